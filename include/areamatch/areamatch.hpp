@@ -1,0 +1,13 @@
+#pragma once
+/// \file areamatch.hpp
+/// Umbrella header of the areamatch core (needs only Boost and Eigen). Map files (PGM, PNG,
+/// ROS YAML) and SVG output are in <areamatch/io.hpp>, target `areamatch::io`.
+
+#include "error.hpp"
+#include "geometry.hpp"
+#include "grid.hpp"
+#include "image.hpp"
+#include "render.hpp"
+#include "synthetic.hpp"
+#include "transform.hpp"
+#include "version.hpp"

@@ -1,0 +1,163 @@
+#pragma once
+/// \file grid.hpp
+/// `OccupancyGrid`: a 2D map of free / occupied / unknown cells with a metric frame.
+///
+/// Frames (the ROS map_server convention, see docs/conventions.md):
+/// - **Image pixels** (col, row): row 0 is the *top* image row, rows grow downwards. A pixel's
+///   centre sits at integer coordinates, so pixel (0, 0) covers [-0.5, 0.5]² and the image
+///   spans [-0.5, width - 0.5] × [-0.5, height - 0.5].
+/// - **World** (x, y) in metres, y up. `origin` is the world pose (x, y, yaw) of the lower-left
+///   corner of the lower-left pixel, as in a map_server YAML. The centre of pixel (col, row) is
+///
+///       world = origin.xy + Rot(origin.yaw) · [ (col + 0.5)·res,  (height − row − 0.5)·res ]
+///
+///   so the image and the world frame are mirror images of each other (rows go down, y goes up).
+/// - **Cell index** (storage order): `row · width + col`, image rows top to bottom.
+///   A ROS `nav_msgs/OccupancyGrid` stores rows bottom to top: see `ros_data_index`.
+
+#include "error.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace areamatch {
+
+/// What a cell is known to be.
+enum class CellState : std::uint8_t { free = 0, occupied = 1, unknown = 2 };
+
+/// A pose in the plane: metres and radians.
+struct Pose2 {
+  double x = 0.0;
+  double y = 0.0;
+  double yaw = 0.0;
+  friend bool operator==(const Pose2& a, const Pose2& b) {
+    return a.x == b.x && a.y == b.y && a.yaw == b.yaw;
+  }
+};
+
+/// Number of cells in each state.
+struct CellCounts {
+  std::size_t free = 0;
+  std::size_t occupied = 0;
+  std::size_t unknown = 0;
+  std::size_t total() const { return free + occupied + unknown; }
+};
+
+/// Throws `parameter_error` unless `resolution` is a positive finite number of metres per cell.
+inline void check_resolution(double resolution, const std::string& what = "resolution") {
+  if (!(std::isfinite(resolution) && resolution > 0.0)) {
+    throw parameter_error(what + " must be a positive finite number of metres per cell, got " +
+                          std::to_string(resolution));
+  }
+}
+
+/// A width × height grid of cells with resolution (m per cell) and origin (see the file comment).
+class OccupancyGrid {
+ public:
+  OccupancyGrid() = default;
+
+  /// A grid with every cell set to `fill`. Throws `parameter_error` for a non-positive size or
+  /// resolution, or a non-finite origin.
+  OccupancyGrid(int width, int height, double resolution, Pose2 origin = {},
+                CellState fill = CellState::unknown)
+      : width_(width), height_(height), resolution_(resolution), origin_(origin) {
+    if (width <= 0 || height <= 0) {
+      throw parameter_error("grid size must be positive, got " + std::to_string(width) + "x" +
+                            std::to_string(height));
+    }
+    check_resolution(resolution);
+    if (!std::isfinite(origin.x) || !std::isfinite(origin.y) || !std::isfinite(origin.yaw)) {
+      throw parameter_error("grid origin must be finite");
+    }
+    cells_.assign(static_cast<std::size_t>(width) * static_cast<std::size_t>(height), fill);
+  }
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  double resolution() const { return resolution_; }
+  const Pose2& origin() const { return origin_; }
+  bool empty() const { return cells_.empty(); }
+
+  void set_resolution(double resolution) {
+    check_resolution(resolution);
+    resolution_ = resolution;
+  }
+  void set_origin(const Pose2& origin) { origin_ = origin; }
+
+  bool contains(int col, int row) const {
+    return col >= 0 && row >= 0 && col < width_ && row < height_;
+  }
+  /// Storage index of pixel (col, row): row-major, image rows top to bottom.
+  std::size_t index(int col, int row) const {
+    return static_cast<std::size_t>(row) * static_cast<std::size_t>(width_) +
+           static_cast<std::size_t>(col);
+  }
+  /// Index of pixel (col, row) in a ROS `nav_msgs/OccupancyGrid::data` (rows bottom to top).
+  std::size_t ros_data_index(int col, int row) const { return index(col, height_ - 1 - row); }
+
+  CellState at(int col, int row) const { return cells_[index(col, row)]; }
+  void set(int col, int row, CellState state) { cells_[index(col, row)] = state; }
+  bool is_free(int col, int row) const { return at(col, row) == CellState::free; }
+
+  const std::vector<CellState>& cells() const { return cells_; }
+  std::vector<CellState>& cells() { return cells_; }
+
+  CellCounts count() const {
+    CellCounts counts;
+    for (CellState c : cells_) {
+      if (c == CellState::free) ++counts.free;
+      else if (c == CellState::occupied) ++counts.occupied;
+      else ++counts.unknown;
+    }
+    return counts;
+  }
+
+  /// Affine map from continuous pixel coordinates (col, row) to world metres.
+  Eigen::Affine2d world_from_pixel() const {
+    const Eigen::Rotation2Dd rotation(origin_.yaw);
+    Eigen::Matrix2d linear = rotation.toRotationMatrix() * Eigen::Vector2d(resolution_, -resolution_).asDiagonal();
+    const Eigen::Vector2d offset =
+        Eigen::Vector2d(origin_.x, origin_.y) +
+        rotation * Eigen::Vector2d(0.5 * resolution_, (height_ - 0.5) * resolution_);
+    Eigen::Affine2d transform = Eigen::Affine2d::Identity();
+    transform.linear() = linear;
+    transform.translation() = offset;
+    return transform;
+  }
+  /// Affine map from world metres to continuous pixel coordinates (col, row).
+  Eigen::Affine2d pixel_from_world() const { return world_from_pixel().inverse(); }
+
+  Eigen::Vector2d pixel_to_world(const Eigen::Vector2d& pixel) const { return world_from_pixel() * pixel; }
+  Eigen::Vector2d world_to_pixel(const Eigen::Vector2d& world) const { return pixel_from_world() * world; }
+  /// World position of the centre of pixel (col, row).
+  Eigen::Vector2d cell_center(int col, int row) const {
+    return pixel_to_world(Eigen::Vector2d(col, row));
+  }
+  /// The pixel containing a world point, rounded to the nearest centre (may lie outside).
+  Eigen::Vector2i world_to_cell(const Eigen::Vector2d& world) const {
+    const Eigen::Vector2d p = world_to_pixel(world);
+    return {static_cast<int>(std::floor(p.x() + 0.5)), static_cast<int>(std::floor(p.y() + 0.5))};
+  }
+
+  friend bool operator==(const OccupancyGrid& a, const OccupancyGrid& b) {
+    return a.width_ == b.width_ && a.height_ == b.height_ && a.resolution_ == b.resolution_ &&
+           a.origin_ == b.origin_ && a.cells_ == b.cells_;
+  }
+  friend bool operator!=(const OccupancyGrid& a, const OccupancyGrid& b) { return !(a == b); }
+
+ private:
+  int width_ = 0;
+  int height_ = 0;
+  double resolution_ = 0.05;
+  Pose2 origin_{};
+  std::vector<CellState> cells_;
+};
+
+}  // namespace areamatch

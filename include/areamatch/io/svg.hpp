@@ -1,0 +1,82 @@
+#pragma once
+/// \file io/svg.hpp
+/// SVG pictures: the destination map as an embedded PNG and the source map's walls as a vector
+/// path placed with the exact pixel transform, so the picture stays sharp at any zoom.
+
+#include "../detail/file.hpp"
+#include "../detail/format.hpp"
+#include "../grid.hpp"
+#include "../render.hpp"
+#include "../transform.hpp"
+#include "png.hpp"
+
+#include <string>
+#include <vector>
+
+namespace areamatch {
+namespace detail {
+
+inline std::string base64(const std::vector<unsigned char>& bytes) {
+  static const char table[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+  std::string out;
+  out.reserve((bytes.size() + 2) / 3 * 4);
+  for (std::size_t i = 0; i < bytes.size(); i += 3) {
+    const unsigned v = (bytes[i] << 16) | ((i + 1 < bytes.size() ? bytes[i + 1] : 0) << 8) |
+                       (i + 2 < bytes.size() ? bytes[i + 2] : 0);
+    out += table[(v >> 18) & 63];
+    out += table[(v >> 12) & 63];
+    out += i + 1 < bytes.size() ? table[(v >> 6) & 63] : '=';
+    out += i + 2 < bytes.size() ? table[v & 63] : '=';
+  }
+  return out;
+}
+
+inline std::string svg_color(const Rgb& c) {
+  return "rgb(" + std::to_string(c[0]) + "," + std::to_string(c[1]) + "," + std::to_string(c[2]) + ")";
+}
+
+/// The occupied cells of `grid` as one SVG path in pixel units (pixel (c, r) covers
+/// [c − 0.5, c + 0.5] × [r − 0.5, r + 0.5]), one rectangle per horizontal run.
+inline std::string occupied_path(const OccupancyGrid& grid) {
+  std::string d;
+  for (int row = 0; row < grid.height(); ++row) {
+    int col = 0;
+    while (col < grid.width()) {
+      if (grid.at(col, row) != CellState::occupied) {
+        ++col;
+        continue;
+      }
+      const int start = col;
+      while (col < grid.width() && grid.at(col, row) == CellState::occupied) ++col;
+      d += "M" + std::to_string(start) + "-.5 " + std::to_string(row) + "-.5h" + std::to_string(col - start) + "v1h-" +
+           std::to_string(col - start) + "z";
+    }
+  }
+  return d;
+}
+
+}  // namespace detail
+
+/// An SVG of `dest` with `source`'s occupied cells laid over it by `T_dest_source`.
+inline std::string overlay_svg(const OccupancyGrid& dest, const OccupancyGrid& source,
+                               const Similarity2& T_dest_source, const MapColors& colors = {}) {
+  using detail::format_double;
+  const PixelTransform m = to_pixel_transform(T_dest_source, source, dest);
+  const std::string png = detail::base64(encode_png(render_grid(dest, colors)));
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"-0.5 -0.5 " + std::to_string(dest.width()) +
+                    " " + std::to_string(dest.height()) + "\" width=\"" + std::to_string(dest.width()) +
+                    "\" height=\"" + std::to_string(dest.height()) + "\">\n";
+  svg += "<image x=\"-0.5\" y=\"-0.5\" width=\"" + std::to_string(dest.width()) + "\" height=\"" +
+         std::to_string(dest.height()) + "\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64," + png +
+         "\"/>\n";
+  svg += "<g transform=\"matrix(" + format_double(m(0, 0)) + " " + format_double(m(1, 0)) + " " +
+         format_double(m(0, 1)) + " " + format_double(m(1, 1)) + " " + format_double(m(0, 2)) + " " +
+         format_double(m(1, 2)) + ")\">\n";
+  svg += "<path fill=\"" + detail::svg_color(colors.overlay) + "\" fill-opacity=\"0.8\" d=\"" +
+         detail::occupied_path(source) + "\"/>\n</g>\n</svg>\n";
+  return svg;
+}
+
+inline void write_text_file(const std::string& path, const std::string& text) { detail::write_file_text(path, text); }
+
+}  // namespace areamatch

@@ -1,0 +1,97 @@
+// The areamatch program: help, info, generate, and exit status 2 with a message for bad input.
+#include <doctest/doctest.h>
+
+#include <areamatch/io.hpp>
+
+#include "test_support.hpp"
+
+#include <cstdio>
+#include <string>
+#include <sys/wait.h>
+
+namespace {
+
+struct Run {
+  int status;
+  std::string out;  // stdout and stderr together
+};
+
+Run run(const std::string& arguments) {
+  const std::string command = std::string(AREAMATCH_CLI) + " " + arguments + " 2>&1";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int raw = ::pclose(pipe);
+  return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+
+}  // namespace
+
+TEST_CASE("help and version") {
+  CHECK(run("--help").status == 0);
+  CHECK(run("--help").out.find("info MAP") != std::string::npos);
+  CHECK(run("info --help").status == 0);
+  CHECK(run("generate --help").out.find("--seed") != std::string::npos);
+  CHECK(run("version").out.find("areamatch 0.1") != std::string::npos);
+  CHECK(run("").status == 2);
+  const Run unknown = run("frobnicate");
+  CHECK(unknown.status == 2);
+  CHECK(unknown.out.find("unknown command 'frobnicate'") != std::string::npos);
+}
+
+TEST_CASE("generate writes a pair that info reads back") {
+  const std::string dir = areamatch_test::temp_dir() + "/pair";
+  const Run gen = run("generate " + dir + " --seed 3 --width 16 --height 12 --rotation 120 --mirror");
+  INFO(gen.out);
+  REQUIRE(gen.status == 0);
+  for (const char* file : {"layout.pgm", "layout.yaml", "robot.png", "robot.yaml", "layout_labels.png", "pairs.json",
+                           "overlay.png", "overlay.svg"}) {
+    CHECK(areamatch_test::is_dir(dir));
+    CHECK(areamatch::detail::read_file_bytes(dir + "/" + file).size() > 0);
+  }
+  const Run info = run("info " + dir + "/layout.yaml");
+  CHECK(info.status == 0);
+  CHECK(info.out.find("resolution: 0.05 m/cell") != std::string::npos);
+  const Run json = run("info " + dir + "/robot.yaml --json");
+  CHECK(json.status == 0);
+  CHECK(json.out.rfind("{", 0) == 0);
+  CHECK(json.out.find("\"free_cells\":") != std::string::npos);
+  // Same seed, same files.
+  const std::string again = areamatch_test::temp_dir() + "/pair_again";
+  REQUIRE(run("generate " + again + " --seed 3 --width 16 --height 12 --rotation 120 --mirror").status == 0);
+  CHECK(areamatch::detail::read_file_bytes(dir + "/robot.png") == areamatch::detail::read_file_bytes(again + "/robot.png"));
+  CHECK(areamatch::detail::read_file_bytes(dir + "/pairs.json") == areamatch::detail::read_file_bytes(again + "/pairs.json"));
+}
+
+TEST_CASE("bad input: exit status 2 and a message naming the problem") {
+  const std::string dir = areamatch_test::temp_dir();
+  auto expect = [](const std::string& arguments, const std::string& message) {
+    const Run r = run(arguments);
+    INFO(arguments << " -> " << r.out);
+    CHECK(r.status == 2);
+    CHECK(r.out.find(message) != std::string::npos);
+  };
+  expect("info /no/such/map.yaml", "cannot open");
+  expect("info " + dir, "is a directory");
+  expect("info", "expected 1 argument");
+  expect("info a.png b.png", "expected 1 argument");
+  areamatch_test::write_bytes(dir + "/cli_empty.png", "");
+  expect("info " + dir + "/cli_empty.png", "file is empty");
+  areamatch_test::write_bytes(dir + "/cli_bad.pgm", "P5 10 10 255\nxx");
+  expect("info " + dir + "/cli_bad.pgm", "truncated PGM");
+  areamatch_test::write_bytes(dir + "/cli_ok.pgm", std::string("P5 2 2 255\n\xfe\xfe\x00\x00", 15));
+  expect("info " + dir + "/cli_ok.pgm --resolution 0", "--resolution must be positive");
+  expect("info " + dir + "/cli_ok.pgm --resolution -0.05", "--resolution must be positive");
+  expect("info " + dir + "/cli_ok.pgm --resolution nan", "--resolution must be a number");
+  expect("info " + dir + "/cli_ok.pgm --resolution abc", "--resolution must be a number");
+  expect("info " + dir + "/cli_ok.pgm --free-thresh 1.5", "--free-thresh must be in [0, 1]");
+  expect("info " + dir + "/cli_ok.pgm --resolution", "--resolution needs a value");
+  expect("info " + dir + "/cli_ok.pgm --bogus", "unknown option --bogus");
+  expect("generate " + dir + "/g --layout spiral", "--layout must be");
+  expect("generate " + dir + "/g --explored 2", "explored_fraction");
+  expect("generate " + dir + "/g --seed -4", "--seed must be a whole number");
+  // A valid bare image with a resolution override works.
+  CHECK(run("info " + dir + "/cli_ok.pgm --resolution 0.1").status == 0);
+}

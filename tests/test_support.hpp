@@ -1,0 +1,46 @@
+#pragma once
+// Helpers shared by the test executables: temp folders, the shared data folder, file writing.
+
+#include <cstdlib>
+#include <fstream>
+#include <string>
+#include <sys/stat.h>
+#include <vector>
+
+namespace areamatch_test {
+
+inline bool& shared_skip_flag() {
+  static bool flag = false;  // test-only state: set when a test found ../shared missing
+  return flag;
+}
+inline bool skipped_for_missing_shared() { return shared_skip_flag(); }
+
+inline bool is_dir(const std::string& path) {
+  struct stat info {};
+  return ::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode);
+}
+
+#ifdef AREAMATCH_SHARED_DIR
+/// The shared data folder (maps/, pairs.json), or "" when it is not there.
+inline std::string shared_dir() {
+  const char* env = std::getenv("AREAMATCH_SHARED_DIR");
+  const std::string dir = env && *env ? env : AREAMATCH_SHARED_DIR;
+  if (is_dir(dir + "/maps")) return dir;
+  shared_skip_flag() = true;
+  return "";
+}
+
+/// A fresh folder for this test executable's files.
+inline std::string temp_dir() {
+  const std::string dir = AREAMATCH_TEST_TMP;
+  ::mkdir(dir.c_str(), 0755);
+  return dir;
+}
+
+#endif
+
+inline void write_bytes(const std::string& path, const std::string& bytes) {
+  std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes;
+}
+
+}  // namespace areamatch_test
