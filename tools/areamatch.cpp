@@ -1,6 +1,7 @@
 // The areamatch command-line program: a thin user of the public headers.
 //
 //   areamatch info MAP            size, resolution, origin and cell fractions of a map
+//   areamatch segment MAP         the map's Area Graph, with pictures, labels and JSON
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
 //
 // Exit status: 0 success, 1 no acceptable result (matching), 2 bad input or usage.
@@ -210,6 +211,68 @@ int run_generate(const std::vector<std::string>& tokens) {
   return 0;
 }
 
+// ------------------------------------------------------------------------------------- segment
+
+const char* kSegmentHelp =
+    "usage: areamatch segment MAP [options] [map options]\n"
+    "Splits a map into areas (rooms, corridors) joined by passages (doors): its Area Graph.\n"
+    "Prints one summary line; exit status 1 when the map has no areas.\n"
+    "Options:\n"
+    "  --door-width M     widest opening that still separates two areas, metres (default 1.25)\n"
+    "  --png OUT.png      picture: areas in colours, passages as lines with a dot sized by width\n"
+    "  --svg OUT.svg      the same as SVG (passages as vectors)\n"
+    "  --show-skeleton    draw the Voronoi skeleton in the pictures\n"
+    "  --labels OUT.png   16-bit label image the size of the map: area id + 1 per pixel, 0 = none\n"
+    "  --json OUT.json    the graph: areas (polygons in metres, world frame), passages, map frame\n";
+
+areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& door_option = "door-width") {
+  areamatch::VoronoiSegmenter segmenter;
+  if (const auto door = args.number(door_option, true)) segmenter.params.with_door_width(*door);
+  return segmenter;
+}
+
+areamatch::GreyImage label_image(const areamatch::AreaGraph& graph) {
+  areamatch::GreyImage labels(graph.grid.width, graph.grid.height, 65535);
+  for (std::size_t i = 0; i < labels.values.size(); ++i) {
+    labels.values[i] = static_cast<std::uint16_t>(std::min(graph.labels[i] + 1, 65535));
+  }
+  return labels;
+}
+
+int run_segment(const std::vector<std::string>& tokens) {
+  const Args args(tokens, merged(kMapFlags, {"show-skeleton"}), merged(kMapOptions, {"door-width", "png", "svg", "labels", "json"}));
+  if (args.flag("help")) {
+    std::cout << kSegmentHelp << kMapOptionsHelp;
+    return 0;
+  }
+  args.expect_positional(1, "MAP");
+  const auto segmenter = segmenter_from(args);
+  const auto grid = areamatch::load_map(args.positional()[0], load_options(args));
+  const auto details = segmenter.segment_with_details(grid);
+  const auto& graph = details.graph;
+  const auto& t = details.timings;
+  if (const auto png = args.text("png")) {
+    areamatch::write_png(*png, areamatch::render_area_graph(grid, graph, {}, args.flag("show-skeleton") ? &details.skeleton : nullptr));
+  }
+  if (const auto svg = args.text("svg")) {
+    areamatch::write_text_file(*svg, areamatch::area_graph_svg(grid, graph, args.flag("show-skeleton") ? &details.skeleton : nullptr));
+  }
+  if (const auto labels = args.text("labels")) areamatch::write_png(*labels, label_image(graph));
+  if (const auto json = args.text("json")) areamatch::write_text_file(*json, areamatch::area_graph_json(graph));
+  std::cout << "areas " << graph.areas.size() << ", passages " << graph.passages.size() << ", covered "
+            << format_fixed(100.0 * graph.covered_fraction, 1) << " % of free space, " << format_fixed(1000.0 * t.total_s, 1)
+            << " ms (binarize " << format_fixed(1000.0 * t.binarize_s, 1) << ", boundary " << format_fixed(1000.0 * t.boundary_s, 1)
+            << " [" << details.boundary_segments << " segments], skeleton " << format_fixed(1000.0 * t.skeleton_s, 1)
+            << ", rooms " << format_fixed(1000.0 * t.rooms_s, 1) << ", areas " << format_fixed(1000.0 * t.areas_s, 1) << ")\n";
+  if (graph.areas.empty()) {
+    std::cerr << "areamatch segment: " << args.positional()[0]
+              << ": no areas (no free space wide enough to pass: it needs free regions at least "
+              << format_double(2.0 * segmenter.params.skeleton.min_clearance_m) << " m across)\n";
+    return 1;
+  }
+  return 0;
+}
+
 // ---------------------------------------------------------------------------------------- main
 
 const char* kMainHelp =
@@ -217,6 +280,7 @@ const char* kMainHelp =
     "Aligns 2D occupancy-grid maps of one building through their Area Graphs.\n"
     "Commands:\n"
     "  info MAP          size, resolution, origin and free/occupied/unknown fractions of a map\n"
+    "  segment MAP       split a map into areas and passages (its Area Graph), with pictures\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
     "  version           print the version\n"
     "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n";
@@ -230,7 +294,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}};
+      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

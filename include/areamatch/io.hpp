@@ -13,6 +13,7 @@
 #include "error.hpp"
 #include "grid.hpp"
 #include "image.hpp"
+#include "io/json.hpp"
 #include "io/pgm.hpp"
 #include "io/png.hpp"
 #include "io/ros_yaml.hpp"

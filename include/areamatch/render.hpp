@@ -3,11 +3,15 @@
 /// Raster pictures of maps and of one map laid over another. File formats (PNG, SVG) are in the
 /// `areamatch::io` target: see io/svg.hpp and io/png.hpp.
 
+#include "area_graph.hpp"
 #include "grid.hpp"
 #include "image.hpp"
+#include "segment/skeleton.hpp"
 #include "transform.hpp"
 
+#include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 
 namespace areamatch {
@@ -51,6 +55,81 @@ inline RgbImage render_overlay(const OccupancyGrid& dest, const OccupancyGrid& s
         image.set(col, row, colors.overlay[0], colors.overlay[1], colors.overlay[2]);
       }
     }
+  }
+  return image;
+}
+
+/// A distinct, light colour for area `id` (golden-angle hues, so neighbours in id differ).
+inline Rgb area_color(int id) {
+  const double hue = std::fmod(id * 137.50776405, 360.0) / 60.0;
+  const double s = 0.55, v = 0.95;
+  const double c = v * s, x = c * (1.0 - std::abs(std::fmod(hue, 2.0) - 1.0)), m = v - c;
+  double r = 0, g = 0, b = 0;
+  switch (static_cast<int>(hue)) {
+    case 0: r = c, g = x; break;
+    case 1: r = x, g = c; break;
+    case 2: g = c, b = x; break;
+    case 3: g = x, b = c; break;
+    case 4: r = x, b = c; break;
+    default: r = c, b = x; break;
+  }
+  auto byte = [m](double v) { return static_cast<std::uint8_t>(std::lround((v + m) * 255.0)); };
+  return {byte(r), byte(g), byte(b)};
+}
+
+/// Draws a line of world points onto a picture of `grid` (nearest pixels).
+inline void draw_world_line(RgbImage& image, const OccupancyGrid& grid, const Eigen::Vector2d& a,
+                            const Eigen::Vector2d& b, const Rgb& color) {
+  const Eigen::Vector2d pa = grid.world_to_pixel(a), pb = grid.world_to_pixel(b);
+  const int steps = std::max(1, static_cast<int>(std::ceil((pb - pa).norm() * 2.0)));
+  for (int i = 0; i <= steps; ++i) {
+    const Eigen::Vector2d p = pa + (pb - pa) * (static_cast<double>(i) / steps);
+    const int c = static_cast<int>(std::floor(p.x() + 0.5)), r = static_cast<int>(std::floor(p.y() + 0.5));
+    if (c >= 0 && r >= 0 && c < image.width && r < image.height) image.set(c, r, color[0], color[1], color[2]);
+  }
+}
+
+/// A filled disc of `radius` pixels around a world point.
+inline void draw_world_dot(RgbImage& image, const OccupancyGrid& grid, const Eigen::Vector2d& centre, double radius,
+                           const Rgb& color) {
+  const Eigen::Vector2d p = grid.world_to_pixel(centre);
+  const int r0 = static_cast<int>(std::ceil(radius));
+  for (int dr = -r0; dr <= r0; ++dr)
+    for (int dc = -r0; dc <= r0; ++dc) {
+      if (dc * dc + dr * dr > radius * radius) continue;
+      const int c = static_cast<int>(std::floor(p.x() + 0.5)) + dc, r = static_cast<int>(std::floor(p.y() + 0.5)) + dr;
+      if (c >= 0 && r >= 0 && c < image.width && r < image.height) image.set(c, r, color[0], color[1], color[2]);
+    }
+}
+
+/// Draws the kept skeleton branches (lattice coordinates) onto a picture of the same grid.
+inline void draw_skeleton(RgbImage& image, const Skeleton& skeleton, const Rgb& color = {90, 90, 90}) {
+  for (const auto& branch : skeleton.branches) {
+    if (branch.removed) continue;
+    for (const auto& s : branch.samples) {
+      const int c = static_cast<int>(std::floor(s.position.x())), r = static_cast<int>(std::floor(s.position.y()));
+      if (c >= 0 && r >= 0 && c < image.width && r < image.height) image.set(c, r, color[0], color[1], color[2]);
+    }
+  }
+}
+
+/// The map with every area in its own colour, passages as lines across their openings with a dot
+/// whose size shows the width, and the skeleton when given. Free cells in no area stay white.
+inline RgbImage render_area_graph(const OccupancyGrid& grid, const AreaGraph& graph, const MapColors& colors = {},
+                                  const Skeleton* skeleton = nullptr) {
+  RgbImage image = render_grid(grid, colors);
+  for (int row = 0; row < grid.height(); ++row)
+    for (int col = 0; col < grid.width(); ++col) {
+      const int label = graph.labels.empty() ? -1 : graph.labels[grid.index(col, row)];
+      if (label < 0) continue;
+      const Rgb c = area_color(label);
+      image.set(col, row, c[0], c[1], c[2]);
+    }
+  if (skeleton) draw_skeleton(image, *skeleton);
+  const Rgb passage_color{20, 20, 160};
+  for (const auto& p : graph.passages) {
+    draw_world_line(image, grid, to_vector(p.line.first), to_vector(p.line.second), passage_color);
+    draw_world_dot(image, grid, p.position, std::max(1.5, 0.25 * p.width_m / grid.resolution()), passage_color);
   }
   return image;
 }

@@ -8,6 +8,8 @@
 #include "../grid.hpp"
 #include "../render.hpp"
 #include "../transform.hpp"
+#include "../area_graph.hpp"
+#include "../segment/skeleton.hpp"
 #include "png.hpp"
 
 #include <string>
@@ -75,6 +77,49 @@ inline std::string overlay_svg(const OccupancyGrid& dest, const OccupancyGrid& s
   svg += "<path fill=\"" + detail::svg_color(colors.overlay) + "\" fill-opacity=\"0.8\" d=\"" +
          detail::occupied_path(source) + "\"/>\n</g>\n</svg>\n";
   return svg;
+}
+
+/// An SVG of a segmentation: the coloured areas as an embedded PNG (one pixel per cell), each
+/// passage as a line across its opening with a circle whose diameter is its width, and the
+/// skeleton as polylines when given.
+inline std::string area_graph_svg(const OccupancyGrid& grid, const AreaGraph& graph, const Skeleton* skeleton = nullptr,
+                                  const MapColors& colors = {}) {
+  using detail::format_double;
+  AreaGraph without_passages = graph;
+  without_passages.passages.clear();
+  const std::string png = detail::base64(encode_png(render_area_graph(grid, without_passages, colors)));
+  const std::string w = std::to_string(grid.width()), h = std::to_string(grid.height());
+  std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"-0.5 -0.5 " + w + " " + h + "\" width=\"" + w +
+                    "\" height=\"" + h + "\">\n<image x=\"-0.5\" y=\"-0.5\" width=\"" + w + "\" height=\"" + h +
+                    "\" style=\"image-rendering:pixelated\" href=\"data:image/png;base64," + png + "\"/>\n";
+  auto pixel = [&](const Eigen::Vector2d& world) {
+    const Eigen::Vector2d p = grid.world_to_pixel(world);
+    return format_double(std::round(p.x() * 100) / 100) + "," + format_double(std::round(p.y() * 100) / 100);
+  };
+  if (skeleton) {
+    svg += "<g fill=\"none\" stroke=\"rgb(90,90,90)\" stroke-width=\"1\">\n";
+    for (const auto& branch : skeleton->branches) {
+      if (branch.removed) continue;
+      svg += "<polyline points=\"";
+      for (const auto& sample : branch.samples) {
+        const Eigen::Vector2d p = sample.position - Eigen::Vector2d(0.5, 0.5);
+        svg += format_double(std::round(p.x() * 100) / 100) + "," + format_double(std::round(p.y() * 100) / 100) + " ";
+      }
+      svg += "\"/>\n";
+    }
+    svg += "</g>\n";
+  }
+  svg += "<g stroke=\"rgb(20,20,160)\" stroke-width=\"2\" fill=\"rgb(20,20,160)\" fill-opacity=\"0.35\">\n";
+  for (const auto& p : graph.passages) {
+    const Eigen::Vector2d c = grid.world_to_pixel(p.position);
+    const std::string a = pixel(to_vector(p.line.first)), b = pixel(to_vector(p.line.second));
+    svg += "<path d=\"M" + a + " L" + b + "\"/><circle cx=\"" + format_double(std::round(c.x() * 100) / 100) +
+           "\" cy=\"" + format_double(std::round(c.y() * 100) / 100) + "\" r=\"" +
+           format_double(std::round(50.0 * p.width_m / grid.resolution()) / 100) + "\"><title>passage " +
+           std::to_string(p.id) + ": areas " + std::to_string(p.area_a) + "-" + std::to_string(p.area_b) + ", " +
+           detail::format_fixed(p.width_m, 2) + " m</title></circle>\n";
+  }
+  return svg + "</g>\n</svg>\n";
 }
 
 inline void write_text_file(const std::string& path, const std::string& text) { detail::write_file_text(path, text); }

@@ -1,0 +1,76 @@
+#pragma once
+/// \file io/json.hpp
+/// JSON text for Area Graphs (what `areamatch segment --json` writes). Numbers are written so
+/// that they read back exactly; keys and arrays come in a fixed order, so equal graphs give
+/// equal text.
+
+#include "../area_graph.hpp"
+#include "../detail/format.hpp"
+
+#include <string>
+
+namespace areamatch {
+namespace detail {
+
+inline std::string json_quote(const std::string& s) {
+  std::string out = "\"";
+  for (char c : s) {
+    if (c == '"' || c == '\\') {
+      out += '\\';
+      out += c;
+    } else if (static_cast<unsigned char>(c) < 0x20) {
+      char buffer[8];
+      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
+      out += buffer;
+    } else {
+      out += c;
+    }
+  }
+  return out + "\"";
+}
+
+inline std::string json_point(double x, double y) { return "[" + format_double(x) + ", " + format_double(y) + "]"; }
+
+template <class Ring>
+std::string json_ring(const Ring& ring) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < ring.size(); ++i) out += (i ? ", " : "") + json_point(ring[i].x(), ring[i].y());
+  return out + "]";
+}
+
+}  // namespace detail
+
+/// The graph as a JSON object: the map's frame, areas (polygon rings in metres, world frame,
+/// outer ring first then holes; size; centroid; kind; passages) and passages.
+inline std::string area_graph_json(const AreaGraph& graph) {
+  using detail::format_double;
+  using detail::json_point;
+  std::string out = "{\n  \"map\": {\"width\": " + std::to_string(graph.grid.width) +
+                    ", \"height\": " + std::to_string(graph.grid.height) +
+                    ", \"resolution\": " + format_double(graph.grid.resolution) + ", \"origin\": [" +
+                    format_double(graph.grid.origin.x) + ", " + format_double(graph.grid.origin.y) + ", " +
+                    format_double(graph.grid.origin.yaw) + "]},\n";
+  out += "  \"covered_fraction\": " + format_double(graph.covered_fraction) + ",\n  \"areas\": [";
+  for (std::size_t i = 0; i < graph.areas.size(); ++i) {
+    const Area& a = graph.areas[i];
+    out += std::string(i ? "," : "") + "\n    {\"id\": " + std::to_string(a.id) + ", \"kind\": \"" + to_string(a.kind) +
+           "\", \"size_m2\": " + format_double(a.size_m2) + ", \"centroid\": " + json_point(a.centroid.x(), a.centroid.y()) +
+           ", \"max_clearance_m\": " + format_double(a.max_clearance_m) + ", \"passages\": [";
+    for (std::size_t k = 0; k < a.passages.size(); ++k) out += (k ? ", " : "") + std::to_string(a.passages[k]);
+    out += "], \"polygon\": [" + detail::json_ring(a.polygon.outer());
+    for (const auto& hole : a.polygon.inners()) out += ", " + detail::json_ring(hole);
+    out += "]}";
+  }
+  out += "\n  ],\n  \"passages\": [";
+  for (std::size_t i = 0; i < graph.passages.size(); ++i) {
+    const Passage& p = graph.passages[i];
+    out += std::string(i ? "," : "") + "\n    {\"id\": " + std::to_string(p.id) + ", \"kind\": \"" + to_string(p.kind) +
+           "\", \"position\": " + json_point(p.position.x(), p.position.y()) + ", \"width_m\": " +
+           format_double(p.width_m) + ", \"areas\": [" + std::to_string(p.area_a) + ", " + std::to_string(p.area_b) +
+           "], \"line\": [" + json_point(p.line.first.x(), p.line.first.y()) + ", " +
+           json_point(p.line.second.x(), p.line.second.y()) + "]}";
+  }
+  return out + "\n  ]\n}\n";
+}
+
+}  // namespace areamatch

@@ -1,0 +1,289 @@
+#pragma once
+/// \file segment/skeleton.hpp
+/// Stage 3 of segmentation: boundary segments → segment Voronoi diagram (Boost.Polygon) → the
+/// free-space skeleton, a graph of branches sampled with their clearance.
+///
+/// Coordinates are those of the pixel-corner lattice (see boundary.hpp): one unit = one cell.
+/// A Voronoi edge is kept when it is primary and finite, both its vertices lie in free cells and
+/// its clearance (distance to the walls that generate it) stays ≥ `min_clearance_m` along it —
+/// that removes the diagram inside walls, outside the building and in gaps too narrow to pass.
+/// Curved edges (a wall corner against a wall) are parabolic arcs and are sampled as such.
+/// Every sample keeps its two *feet*: the nearest points on the two walls it lies between, which
+/// later give each passage's line across the opening.
+
+#include "../error.hpp"
+#include "binarize.hpp"
+#include "boundary.hpp"
+
+#include <boost/polygon/voronoi.hpp>
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <vector>
+
+namespace areamatch {
+
+/// One point of the skeleton with its distance to the nearest wall and where that wall is.
+struct SkeletonSample {
+  Eigen::Vector2d position = Eigen::Vector2d::Zero();  ///< lattice units
+  double clearance = 0.0;                               ///< lattice units
+  Eigen::Vector2d foot_a = Eigen::Vector2d::Zero();     ///< nearest point on one wall
+  Eigen::Vector2d foot_b = Eigen::Vector2d::Zero();     ///< nearest point on the other wall
+};
+
+/// A junction (degree ≥ 3), dead end (degree 1) or loop anchor of the skeleton.
+struct SkeletonNode {
+  SkeletonSample sample;
+  std::vector<int> branches;  ///< ids of the branches ending here (twice for a self-loop)
+};
+
+/// A chain of Voronoi edges between two nodes, sampled at most `sample_step` apart.
+/// `samples.front()` lies at node `from`, `samples.back()` at node `to`.
+struct SkeletonBranch {
+  int from = -1;
+  int to = -1;
+  std::vector<SkeletonSample> samples;
+  double length = 0.0;  ///< lattice units
+  bool removed = false; ///< pruned
+};
+
+struct Skeleton {
+  std::vector<SkeletonNode> nodes;
+  std::vector<SkeletonBranch> branches;
+  std::size_t voronoi_edges = 0;  ///< primary finite edges examined
+
+  int degree(int node) const {
+    int d = 0;
+    for (int b : nodes[node].branches) d += !branches[b].removed;
+    return d;
+  }
+};
+
+/// Parameters of `build_skeleton`. Lengths in metres.
+struct SkeletonParams {
+  /// Skeleton closer than this to a wall is dropped: gaps narrower than twice this are not
+  /// passable. The reference implementation's `voronoiMinimumDistanceToObstacle`, 0.25 m.
+  double min_clearance_m = 0.25;
+  /// Spacing of samples along skeleton edges.
+  double sample_step_m = 0.05;
+  /// Dead ends shorter than this whose clearance never reaches `keep_clearance_m` are pruned
+  /// (wall niches, corner spurs), repeatedly until none is left.
+  double spur_length_m = 1.0;
+  /// A dead end whose clearance reaches this (half the door width) is a room, never a spur.
+  double keep_clearance_m = 0.625;
+
+  void validate() const {
+    auto check = [](double v, const char* name, bool positive) {
+      if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0)) {
+        throw parameter_error(std::string("SkeletonParams::") + name + " must be " + (positive ? "> 0" : ">= 0"));
+      }
+    };
+    check(min_clearance_m, "min_clearance_m", false);
+    check(sample_step_m, "sample_step_m", true);
+    check(spur_length_m, "spur_length_m", false);
+    check(keep_clearance_m, "keep_clearance_m", false);
+  }
+};
+
+namespace detail {
+
+/// The site (point or segment) of a Voronoi cell.
+struct VoronoiSite {
+  bool is_point = false;
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+
+  /// The nearest point of the site to p.
+  Eigen::Vector2d foot(const Eigen::Vector2d& p) const {
+    if (is_point) return a;
+    const Eigen::Vector2d d = b - a;
+    const double t = std::clamp((p - a).dot(d) / d.squaredNorm(), 0.0, 1.0);
+    return a + t * d;
+  }
+};
+
+template <class Cell>
+VoronoiSite site_of(const Cell& cell, const std::vector<LatticeSegment>& segments) {
+  const LatticeSegment& s = segments[cell.source_index()];
+  const Eigen::Vector2d low(s.low().x(), s.low().y()), high(s.high().x(), s.high().y());
+  VoronoiSite site;
+  if (cell.contains_point()) {
+    site.is_point = true;
+    site.a = cell.source_category() == boost::polygon::SOURCE_CATEGORY_SEGMENT_START_POINT ? low : high;
+  } else {
+    site.a = low;
+    site.b = high;
+  }
+  return site;
+}
+
+/// Points along a Voronoi edge from v0 to v1 at most `step` apart (both ends included). A curved
+/// edge lies on the parabola of points equidistant from a point site and a segment site.
+inline std::vector<Eigen::Vector2d> edge_points(const Eigen::Vector2d& v0, const Eigen::Vector2d& v1, bool curved,
+                                                const VoronoiSite& s0, const VoronoiSite& s1, double step) {
+  std::vector<Eigen::Vector2d> points;
+  if (!curved) {
+    const int n = std::max(1, static_cast<int>(std::ceil((v1 - v0).norm() / step)));
+    for (int i = 0; i <= n; ++i) points.push_back(v0 + (v1 - v0) * (static_cast<double>(i) / n));
+    return points;
+  }
+  const VoronoiSite& point_site = s0.is_point ? s0 : s1;
+  const VoronoiSite& segment_site = s0.is_point ? s1 : s0;
+  const Eigen::Vector2d origin = segment_site.a;
+  const Eigen::Vector2d u = (segment_site.b - segment_site.a).normalized();
+  const Eigen::Vector2d n(-u.y(), u.x());
+  auto local = [&](const Eigen::Vector2d& p) { return Eigen::Vector2d((p - origin).dot(u), (p - origin).dot(n)); };
+  const Eigen::Vector2d p = local(point_site.a);
+  const double x0 = local(v0).x(), x1 = local(v1).x();
+  // y = ((x − px)² + py²) / (2 py); arc length ≤ |Δx|·√(1 + slope²) with slope (x − px)/py.
+  const double slope = std::max(std::abs(x0 - p.x()), std::abs(x1 - p.x())) / std::abs(p.y());
+  const int n_steps = std::max(1, static_cast<int>(std::ceil(std::abs(x1 - x0) * std::sqrt(1.0 + slope * slope) / step)));
+  points.push_back(v0);
+  for (int i = 1; i < n_steps; ++i) {
+    const double x = x0 + (x1 - x0) * (static_cast<double>(i) / n_steps);
+    const double y = ((x - p.x()) * (x - p.x()) + p.y() * p.y()) / (2.0 * p.y());
+    points.push_back(origin + x * u + y * n);
+  }
+  points.push_back(v1);
+  return points;
+}
+
+}  // namespace detail
+
+/// Builds the pruned skeleton of `space` from its boundary (see the file comment).
+inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& boundary, double resolution,
+                               const SkeletonParams& params = {}) {
+  params.validate();
+  namespace bp = boost::polygon;
+  const double min_clearance = params.min_clearance_m / resolution;
+  const double step = params.sample_step_m / resolution;
+  Skeleton skeleton;
+  if (boundary.segments.empty()) return skeleton;
+
+  bp::voronoi_diagram<double> diagram;
+  bp::construct_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram);
+
+  auto is_free_at = [&](double x, double y) {
+    return space.is_free(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
+  };
+  // Kept edges as (vertex index, vertex index, samples); vertices indexed by their position in
+  // the diagram, so the result does not depend on memory addresses.
+  struct KeptEdge {
+    std::size_t v0, v1;
+    std::vector<SkeletonSample> samples;
+  };
+  std::vector<KeptEdge> kept;
+  const auto* first_vertex = &diagram.vertices().front();
+  for (const auto& edge : diagram.edges()) {
+    if (!edge.is_primary() || !edge.is_finite()) continue;
+    if (&edge > edge.twin()) continue;  // each undirected edge once
+    ++skeleton.voronoi_edges;
+    const auto* a = edge.vertex0();
+    const auto* b = edge.vertex1();
+    if (!is_free_at(a->x(), a->y()) || !is_free_at(b->x(), b->y())) continue;
+    const detail::VoronoiSite s0 = detail::site_of(*edge.cell(), boundary.segments);
+    const detail::VoronoiSite s1 = detail::site_of(*edge.twin()->cell(), boundary.segments);
+    const Eigen::Vector2d p0(a->x(), a->y()), p1(b->x(), b->y());
+    if ((s0.foot(p0) - p0).norm() < min_clearance || (s0.foot(p1) - p1).norm() < min_clearance) continue;
+    KeptEdge k{static_cast<std::size_t>(a - first_vertex), static_cast<std::size_t>(b - first_vertex), {}};
+    bool passable = true;
+    for (const Eigen::Vector2d& p : detail::edge_points(p0, p1, edge.is_curved(), s0, s1, step)) {
+      SkeletonSample sample;
+      sample.position = p;
+      sample.foot_a = s0.foot(p);
+      sample.foot_b = s1.foot(p);
+      sample.clearance = 0.5 * ((sample.foot_a - p).norm() + (sample.foot_b - p).norm());
+      if (sample.clearance < min_clearance) {
+        passable = false;
+        break;
+      }
+      k.samples.push_back(sample);
+    }
+    if (passable) kept.push_back(std::move(k));
+  }
+
+  // Graph over the kept edges; nodes are vertices of degree ≠ 2 (plus one anchor per pure loop).
+  std::map<std::size_t, std::vector<std::size_t>> incident;  // vertex → kept edge ids
+  for (std::size_t i = 0; i < kept.size(); ++i) {
+    incident[kept[i].v0].push_back(i);
+    incident[kept[i].v1].push_back(i);
+  }
+  std::map<std::size_t, int> node_of_vertex;
+  auto make_node = [&](std::size_t vertex, const SkeletonSample& sample) {
+    auto it = node_of_vertex.find(vertex);
+    if (it != node_of_vertex.end()) return it->second;
+    const int id = static_cast<int>(skeleton.nodes.size());
+    skeleton.nodes.push_back({sample, {}});
+    node_of_vertex[vertex] = id;
+    return id;
+  };
+  auto sample_at = [&](std::size_t edge, std::size_t vertex) {
+    return kept[edge].v0 == vertex ? kept[edge].samples.front() : kept[edge].samples.back();
+  };
+  for (const auto& [vertex, edges] : incident)
+    if (edges.size() != 2) make_node(vertex, sample_at(edges.front(), vertex));
+
+  std::vector<bool> used(kept.size(), false);
+  auto walk = [&](std::size_t start_vertex, std::size_t start_edge) {
+    SkeletonBranch branch;
+    branch.from = node_of_vertex.at(start_vertex);
+    std::size_t vertex = start_vertex, e = start_edge;
+    while (true) {
+      used[e] = true;
+      auto samples = kept[e].samples;
+      if (kept[e].v0 != vertex) std::reverse(samples.begin(), samples.end());
+      if (!branch.samples.empty()) samples.erase(samples.begin());  // shared with the previous edge
+      branch.samples.insert(branch.samples.end(), samples.begin(), samples.end());
+      vertex = kept[e].v0 == vertex ? kept[e].v1 : kept[e].v0;
+      if (node_of_vertex.count(vertex)) break;
+      const auto& next = incident[vertex];
+      e = next[0] == e ? next[1] : next[0];
+    }
+    branch.to = node_of_vertex.at(vertex);
+    for (std::size_t i = 1; i < branch.samples.size(); ++i)
+      branch.length += (branch.samples[i].position - branch.samples[i - 1].position).norm();
+    const int id = static_cast<int>(skeleton.branches.size());
+    skeleton.nodes[branch.from].branches.push_back(id);
+    skeleton.nodes[branch.to].branches.push_back(id);
+    skeleton.branches.push_back(std::move(branch));
+  };
+  for (const auto& [vertex, edges] : incident) {
+    if (!node_of_vertex.count(vertex)) continue;
+    for (std::size_t e : edges)
+      if (!used[e]) walk(vertex, e);
+  }
+  // Loops made only of degree-2 vertices get an anchor node at their smallest vertex.
+  for (const auto& [vertex, edges] : incident) {
+    if (used[edges.front()]) continue;
+    make_node(vertex, sample_at(edges.front(), vertex));
+    walk(vertex, edges.front());
+  }
+
+  // Prune short, narrow dead ends until none is left.
+  const double spur_length = params.spur_length_m / resolution;
+  const double keep_clearance = params.keep_clearance_m / resolution;
+  bool pruned = true;
+  while (pruned) {
+    pruned = false;
+    for (auto& branch : skeleton.branches) {
+      if (branch.removed || branch.from == branch.to) continue;
+      const bool from_leaf = skeleton.degree(branch.from) == 1, to_leaf = skeleton.degree(branch.to) == 1;
+      if (from_leaf == to_leaf) continue;  // not a dead end (or an isolated piece)
+      if (branch.length >= spur_length) continue;
+      double widest = 0.0;
+      for (std::size_t i = 0; i + 1 < branch.samples.size(); ++i) {
+        const auto& s = from_leaf ? branch.samples[i] : branch.samples[branch.samples.size() - 1 - i];
+        widest = std::max(widest, s.clearance);
+      }
+      if (widest >= keep_clearance) continue;
+      branch.removed = true;
+      pruned = true;
+    }
+  }
+  return skeleton;
+}
+
+}  // namespace areamatch

@@ -1,0 +1,103 @@
+#pragma once
+/// \file segment/voronoi_segmenter.hpp
+/// `VoronoiSegmenter`: the default segmenter policy. Occupancy grid → Area Graph through the
+/// stages of this folder:
+///
+///   binarize.hpp   free-space mask, speckles removed
+///   boundary.hpp   obstacle boundary → simplified, validated lattice segments
+///   skeleton.hpp   Boost.Polygon segment Voronoi → free-space skeleton with clearance
+///   rooms.hpp      narrow/wide parts at half the door width → rooms, corridors, passages
+///   areas.hpp      labelled free space cut at the passages → area polygons
+///
+/// The one parameter most maps need is the door width (`params.rooms.door_width_m`, default
+/// 1.25 m, the reference implementation's fallback): the widest opening that still separates
+/// two areas.
+
+#include "../area_graph.hpp"
+#include "../grid.hpp"
+#include "../segmenter.hpp"
+#include "areas.hpp"
+#include "binarize.hpp"
+#include "boundary.hpp"
+#include "rooms.hpp"
+#include "skeleton.hpp"
+
+#include <chrono>
+#include <string>
+
+namespace areamatch {
+
+/// Wall-clock seconds per stage of one segmentation.
+struct SegmentationTimings {
+  double binarize_s = 0.0;
+  double boundary_s = 0.0;
+  double skeleton_s = 0.0;
+  double rooms_s = 0.0;
+  double areas_s = 0.0;
+  double total_s = 0.0;
+};
+
+/// Everything a segmentation produced, for pictures and diagnostics.
+struct SegmentationDetails {
+  AreaGraph graph;
+  Skeleton skeleton;
+  RoomDetection rooms;
+  std::size_t boundary_segments = 0;
+  std::size_t reverted_rings = 0;
+  SegmentationTimings timings;
+};
+
+struct VoronoiSegmenter {
+  struct Params {
+    BinarizeParams binarize;
+    BoundaryParams boundary;
+    SkeletonParams skeleton;
+    RoomParams rooms;
+    AreaParams areas;
+
+    /// Sets the door width (metres) everywhere it matters.
+    Params& with_door_width(double door_width_m) {
+      rooms.door_width_m = door_width_m;
+      return *this;
+    }
+  };
+  Params params;
+
+  VoronoiSegmenter() = default;
+  explicit VoronoiSegmenter(Params p) : params(std::move(p)) {}
+
+  AreaGraph segment(const OccupancyGrid& grid) const { return segment_with_details(grid).graph; }
+
+  SegmentationDetails segment_with_details(const OccupancyGrid& grid) const {
+    using clock = std::chrono::steady_clock;
+    auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+    if (grid.empty()) throw parameter_error("cannot segment an empty grid");
+    // Parameters that must agree between stages are derived from one place.
+    SkeletonParams skeleton_params = params.skeleton;
+    skeleton_params.keep_clearance_m = 0.5 * params.rooms.door_width_m;
+    AreaParams area_params = params.areas;
+    area_params.min_clearance_m = params.skeleton.min_clearance_m;
+
+    SegmentationDetails out;
+    const double res = grid.resolution();
+    const auto t0 = clock::now();
+    const FreeSpace space = binarize(grid, params.binarize);
+    const auto t1 = clock::now();
+    const BoundarySegments boundary = trace_boundary(space, res, params.boundary);
+    out.boundary_segments = boundary.segments.size();
+    out.reverted_rings = boundary.reverted_rings;
+    const auto t2 = clock::now();
+    out.skeleton = build_skeleton(space, boundary, res, skeleton_params);
+    const auto t3 = clock::now();
+    out.rooms = detect_rooms(out.skeleton, res, params.rooms);
+    const auto t4 = clock::now();
+    out.graph = build_areas(grid, space, out.rooms, area_params);
+    const auto t5 = clock::now();
+    out.timings = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t3, t4), seconds(t4, t5), seconds(t0, t5)};
+    return out;
+  }
+};
+
+static_assert(is_segmenter_v<VoronoiSegmenter>);
+
+}  // namespace areamatch
