@@ -219,6 +219,10 @@ const char* kSegmentHelp =
     "Prints one summary line; exit status 1 when the map has no areas.\n"
     "Options:\n"
     "  --door-width M     widest opening that still separates two areas, metres (default 1.25)\n"
+    "  --min-area M2      areas smaller than this merge into a neighbour (default 1.0 m^2)\n"
+    "  --room-margin M    a room must be this much wider than a door somewhere (default 0.05 m)\n"
+    "  --simplify M       how far simplified walls may stray from the pixel boundary (default 0.1 m)\n"
+    "  --speckle-area M2  obstacle blobs up to this area are erased (default 0.05 m^2)\n"
     "  --png OUT.png      picture: areas in colours, passages as lines with a dot sized by width\n"
     "  --svg OUT.svg      the same as SVG (passages as vectors)\n"
     "  --show-skeleton    draw the Voronoi skeleton in the pictures\n"
@@ -228,6 +232,10 @@ const char* kSegmentHelp =
 areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& door_option = "door-width") {
   areamatch::VoronoiSegmenter segmenter;
   if (const auto door = args.number(door_option, true)) segmenter.params.with_door_width(*door);
+  if (const auto area = args.number("min-area", false, true)) segmenter.params.areas.min_area_m2 = *area;
+  if (const auto margin = args.number("room-margin", false, true)) segmenter.params.rooms.room_margin_m = *margin;
+  if (const auto tolerance = args.number("simplify", false, true)) segmenter.params.boundary.simplify_tolerance_m = *tolerance;
+  if (const auto speckle = args.number("speckle-area", false, true)) segmenter.params.binarize.max_speckle_area_m2 = *speckle;
   return segmenter;
 }
 
@@ -240,7 +248,7 @@ areamatch::GreyImage label_image(const areamatch::AreaGraph& graph) {
 }
 
 int run_segment(const std::vector<std::string>& tokens) {
-  const Args args(tokens, merged(kMapFlags, {"show-skeleton"}), merged(kMapOptions, {"door-width", "png", "svg", "labels", "json"}));
+  const Args args(tokens, merged(kMapFlags, {"show-skeleton"}), merged(kMapOptions, {"door-width", "min-area", "room-margin", "simplify", "speckle-area", "png", "svg", "labels", "json"}));
   if (args.flag("help")) {
     std::cout << kSegmentHelp << kMapOptionsHelp;
     return 0;

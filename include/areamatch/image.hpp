@@ -135,10 +135,17 @@ inline OccupancyGrid grid_from_image(const GreyImage& image, const OccupancyThre
                                      double resolution, const Pose2& origin = {}) {
   thresholds.validate();
   OccupancyGrid grid(image.width, image.height, resolution, origin);
+  // Every pixel is judged on its 8-bit value: one table lookup per pixel.
+  CellState opaque[256], transparent[256];
+  for (int v = 0; v < 256; ++v) {
+    opaque[v] = thresholds.classify(v, false);
+    transparent[v] = thresholds.classify(v, true);
+  }
   auto& cells = grid.cells();
+  const bool eight_bit = image.max_value == 255;
   for (std::size_t i = 0; i < cells.size(); ++i) {
-    const bool transparent = image.has_alpha() && image.alpha[i] == 0;
-    cells[i] = thresholds.classify(image.value8(i), transparent);
+    const int v = eight_bit ? image.values[i] : image.value8(i);
+    cells[i] = image.has_alpha() && image.alpha[i] == 0 ? transparent[v] : opaque[v];
   }
   return grid;
 }

@@ -107,7 +107,8 @@ inline void draw_skeleton(RgbImage& image, const Skeleton& skeleton, const Rgb& 
   for (const auto& branch : skeleton.branches) {
     if (branch.removed) continue;
     for (const auto& s : branch.samples) {
-      const int c = static_cast<int>(std::floor(s.position.x())), r = static_cast<int>(std::floor(s.position.y()));
+      const Eigen::Vector2d p = s.position + skeleton.lattice_offset;
+      const int c = static_cast<int>(std::floor(p.x())), r = static_cast<int>(std::floor(p.y()));
       if (c >= 0 && r >= 0 && c < image.width && r < image.height) image.set(c, r, color[0], color[1], color[2]);
     }
   }

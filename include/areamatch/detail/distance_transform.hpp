@@ -1,8 +1,9 @@
 #pragma once
 /// \file detail/distance_transform.hpp
 /// Exact squared Euclidean distance transform on a grid (Felzenszwalb & Huttenlocher's lower
-/// envelope of parabolas, one pass per axis, O(cells)).
+/// envelope of parabolas along rows after a 1D pass along columns, O(cells)).
 
+#include <algorithm>
 #include <cstdint>
 #include <limits>
 #include <vector>
@@ -15,9 +16,21 @@ template <class IsSource>
 std::vector<float> squared_distance_transform(int width, int height, IsSource&& is_source) {
   const float infinity = 1e20f;
   const std::size_t n = static_cast<std::size_t>(width) * height;
+  // Pass 1, along columns: distance to the nearest source in the same column. For binary sources
+  // this is two linear scans, done row by row so memory is read in order.
   std::vector<float> d(n);
-  for (int r = 0; r < height; ++r)
-    for (int c = 0; c < width; ++c) d[static_cast<std::size_t>(r) * width + c] = is_source(c, r) ? 0.0f : infinity;
+  const float far = static_cast<float>(width + height);
+  for (int r = 0; r < height; ++r) {
+    float* row = &d[static_cast<std::size_t>(r) * width];
+    const float* above = r > 0 ? row - width : nullptr;
+    for (int c = 0; c < width; ++c) row[c] = is_source(c, r) ? 0.0f : (above ? std::min(above[c] + 1.0f, far) : far);
+  }
+  for (int r = height - 2; r >= 0; --r) {
+    float* row = &d[static_cast<std::size_t>(r) * width];
+    const float* below = row + width;
+    for (int c = 0; c < width; ++c) row[c] = std::min(row[c], below[c] + 1.0f);
+  }
+  for (float& v : d) v = v >= far ? infinity : v * v;
 
   const int longest = width > height ? width : height;
   std::vector<float> f(longest), out(longest), z(longest + 1);
@@ -57,11 +70,6 @@ std::vector<float> squared_distance_transform(int width, int height, IsSource&& 
       out[q] = diff * diff + f[v[k]];
     }
   };
-  for (int c = 0; c < width; ++c) {
-    for (int r = 0; r < height; ++r) f[r] = d[static_cast<std::size_t>(r) * width + c];
-    transform_1d(height);
-    for (int r = 0; r < height; ++r) d[static_cast<std::size_t>(r) * width + c] = out[r];
-  }
   for (int r = 0; r < height; ++r) {
     float* row = &d[static_cast<std::size_t>(r) * width];
     for (int c = 0; c < width; ++c) f[c] = row[c];

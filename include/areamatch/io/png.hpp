@@ -47,6 +47,10 @@ inline GreyImage decode_png(const std::vector<unsigned char>& bytes, const std::
 
   auto convert = [&](const auto* pixels) {
     const std::size_t count = image.values.size();
+    if (channels == 1) {  // the common case: grey maps
+      std::copy(pixels, pixels + count, image.values.begin());
+      return;
+    }
     for (std::size_t i = 0; i < count; ++i) {
       const auto* p = pixels + i * static_cast<std::size_t>(channels);
       unsigned sum = 0;

@@ -102,7 +102,7 @@ inline std::string area_graph_svg(const OccupancyGrid& grid, const AreaGraph& gr
       if (branch.removed) continue;
       svg += "<polyline points=\"";
       for (const auto& sample : branch.samples) {
-        const Eigen::Vector2d p = sample.position - Eigen::Vector2d(0.5, 0.5);
+        const Eigen::Vector2d p = sample.position + skeleton->lattice_offset - Eigen::Vector2d(0.5, 0.5);
         svg += format_double(std::round(p.x() * 100) / 100) + "," + format_double(std::round(p.y() * 100) / 100) + " ";
       }
       svg += "\"/>\n";

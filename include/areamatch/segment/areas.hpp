@@ -4,16 +4,15 @@
 ///
 /// Free space is labelled by growing every region from its skeleton samples, 4-connected, with
 /// each passage's line (wall to wall) as a barrier, so every free cell ends up in exactly one
-/// area. Growth first covers the free space *opened* by a disc of `min_clearance_m` (what the
-/// skeleton can reach); from there it may go `fringe_m` further into thinner space (corners,
-/// cracks). Laser streaks through windows and doors — free space too thin to pass that leads
+/// area. Growth first covers the *core* — free cells at least `min_clearance_m` from the walls,
+/// where the skeleton lives — and then goes at most `min_clearance_m + fringe_m` further into
+/// thinner space (room corners, cracks). Laser streaks through windows and doors — free space too thin to pass that leads
 /// away from the building — stay outside every area; `AreaGraph::covered_fraction` says how much.
 /// Areas smaller than `min_area_m2` merge into the neighbour they share the longest border with.
 /// Polygons come from Boost.Polygon's rectilinear set operations on the labelled cells, so they
 /// follow the cell boundaries exactly and are valid.
 
 #include "../area_graph.hpp"
-#include "../detail/distance_transform.hpp"
 #include "../error.hpp"
 #include "../geometry.hpp"
 #include "../grid.hpp"
@@ -24,7 +23,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <limits>
 #include <map>
+#include <numeric>
+#include <queue>
 #include <vector>
 
 namespace areamatch {
@@ -68,6 +71,45 @@ void supercover_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Mark&& 
   }
 }
 
+/// Free cells farther than `distance` (in cells, centre to centre) from every non-free cell: the
+/// erosion of free space by a disc. Works on byte column distances and a short window per row,
+/// so it needs one byte per cell.
+inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) {
+  const int W = space.width, H = space.height;
+  const std::size_t N = static_cast<std::size_t>(W) * H;
+  std::vector<std::uint8_t> core(N, 0);
+  const double threshold = distance * distance;
+  const int reach = static_cast<int>(std::ceil(distance));
+  if (reach >= 250) throw parameter_error("erosion radius too large for the grid's resolution");
+  const auto cap = static_cast<std::uint8_t>(reach + 1);  // cap² ≥ threshold: "far enough"
+  // Vertical distance to the nearest non-free cell in the same column, capped.
+  std::vector<std::uint8_t> vertical(N);
+  for (int r = 0; r < H; ++r)
+    for (int c = 0; c < W; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * W + c;
+      vertical[i] = !space.free[i] ? 0 : r == 0 ? 1 : static_cast<std::uint8_t>(std::min<int>(vertical[i - W] + 1, cap));
+    }
+  for (int r = H - 2; r >= 0; --r)
+    for (int c = 0; c < W; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * W + c;
+      vertical[i] = static_cast<std::uint8_t>(std::min<int>(vertical[i], vertical[i + W] + 1));
+    }
+  for (int r = 0; r < H; ++r) {
+    const std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
+    for (int c = 0; c < W; ++c) {
+      if (row[c] * row[c] < threshold) continue;
+      bool far = true;
+      for (int dx = 1; dx <= reach && far; ++dx) {
+        const double dx2 = static_cast<double>(dx) * dx;
+        const int left = c - dx >= 0 ? row[c - dx] : 0, right = c + dx < W ? row[c + dx] : 0;
+        far = dx2 + left * left >= threshold && dx2 + right * right >= threshold;
+      }
+      core[static_cast<std::size_t>(r) * W + c] = far;
+    }
+  }
+  return core;
+}
+
 inline Eigen::Vector2d lattice_to_world(const OccupancyGrid& grid, const Eigen::Vector2d& p) {
   return grid.pixel_to_world(p - Eigen::Vector2d(0.5, 0.5));
 }
@@ -84,16 +126,15 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   const double res = grid.resolution();
   AreaGraph graph;
   graph.grid = {grid.width(), grid.height(), res, grid.origin()};
-  graph.labels.assign(N, -1);
+  graph.labels.assign(grid.cells().size(), -1);
+  if (N == 0) return graph;
+  // Lattice coordinates of the cropped mask → world metres.
+  const Eigen::Vector2d offset(space.offset_col, space.offset_row);
+  auto to_world = [&](const Eigen::Vector2d& lattice) { return detail::lattice_to_world(grid, lattice + offset); };
 
-  // The opening of free space by a disc of min_clearance: what the skeleton can reach.
+  // The core: free cells at least min_clearance from every wall, where the skeleton lives.
   const double radius = params.min_clearance_m / res;
-  const auto wall_d2 = detail::squared_distance_transform(W, H, [&](int c, int r) { return !space.is_free(c, r); });
-  std::vector<std::uint8_t> core(N, 0);
-  for (std::size_t i = 0; i < N; ++i) core[i] = space.free[i] && std::sqrt(wall_d2[i]) - 0.5 >= radius;
-  const auto core_d2 = detail::squared_distance_transform(W, H, [&](int c, int r) { return core[static_cast<std::size_t>(r) * W + c] != 0; });
-  std::vector<std::uint8_t> opened(N, 0);
-  for (std::size_t i = 0; i < N; ++i) opened[i] = space.free[i] && std::sqrt(core_d2[i]) <= radius + 0.5;
+  const std::vector<std::uint8_t> core = detail::erode(space, radius + 0.5);
 
   // Passage lines are barriers.
   std::vector<std::uint8_t> barrier(N, 0);
@@ -106,9 +147,11 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     });
   }
 
-  // Grow regions from their skeleton samples: first over the opened space, then into the fringe.
-  std::vector<int>& label = graph.labels;
-  std::vector<std::size_t> queue;
+  // Grow regions from their skeleton samples: first over the core, then at most
+  // min_clearance + fringe into thinner space (corners and cracks; laser streaks only that far).
+  std::vector<int> label(N, -1);
+  if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
+  std::vector<std::uint32_t> queue;
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
     if (region < 0) continue;
@@ -118,46 +161,53 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     const std::size_t i = static_cast<std::size_t>(r) * W + c;
     if (barrier[i] || label[i] >= 0) continue;
     label[i] = region;
-    queue.push_back(i);
+    queue.push_back(static_cast<std::uint32_t>(i));
   }
-  auto grow = [&](std::vector<std::size_t>& frontier, bool into_fringe) {
-    std::vector<std::size_t> next;
+  // The mask's border is obstacle, so a free cell's four neighbours are always inside it.
+  const std::ptrdiff_t step[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+  // Breadth-first growth; into_fringe grows one step (one ring of cells) per call.
+  auto grow = [&](std::vector<std::uint32_t>& frontier, bool into_fringe) {
+    std::vector<std::uint32_t> next;
     for (std::size_t head = 0; head < frontier.size(); ++head) {
       const std::size_t i = frontier[head];
-      const int c = static_cast<int>(i % W), r = static_cast<int>(i / W);
-      const int dc[4] = {1, -1, 0, 0}, dr[4] = {0, 0, 1, -1};
-      for (int k = 0; k < 4; ++k) {
-        const int nc = c + dc[k], nr = r + dr[k];
-        if (nc < 0 || nr < 0 || nc >= W || nr >= H) continue;
-        const std::size_t j = static_cast<std::size_t>(nr) * W + nc;
-        if (label[j] >= 0 || barrier[j] || !space.free[j]) continue;
-        if (!into_fringe && !opened[j]) continue;
+      for (std::ptrdiff_t d : step) {
+        const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
+        if (label[j] >= 0 || barrier[j] || !(into_fringe ? space.free[j] : core[j])) continue;
         label[j] = label[i];
-        (into_fringe ? next : frontier).push_back(j);
+        (into_fringe ? next : frontier).push_back(static_cast<std::uint32_t>(j));
       }
     }
     frontier.swap(next);
   };
   grow(queue, false);
   queue.clear();
-  for (std::size_t i = 0; i < N; ++i)
-    if (label[i] >= 0) queue.push_back(i);
-  const int fringe_steps = static_cast<int>(std::ceil(params.fringe_m / res));
+  // The fringe starts from labelled cells next to unlabelled free space.
+  for (std::size_t i = 0; i < N; ++i) {
+    if (label[i] < 0) continue;
+    for (std::ptrdiff_t d : step) {
+      const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
+      if (label[j] < 0 && space.free[j] && !barrier[j]) {
+        queue.push_back(static_cast<std::uint32_t>(i));
+        break;
+      }
+    }
+  }
+  const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
   for (int step = 0; step < fringe_steps && !queue.empty(); ++step) grow(queue, true);
   // Barrier cells join the area most of their neighbours belong to.
   auto majority_of_neighbours = [&](std::size_t i) {
-    const int c = static_cast<int>(i % W), r = static_cast<int>(i / W);
-    std::map<int, int> votes;
-    const int dc[4] = {1, -1, 0, 0}, dr[4] = {0, 0, 1, -1};
-    for (int k = 0; k < 4; ++k) {
-      const int nc = c + dc[k], nr = r + dr[k];
-      if (nc < 0 || nr < 0 || nc >= W || nr >= H) continue;
-      const int l = label[static_cast<std::size_t>(nr) * W + nc];
-      if (l >= 0) ++votes[l];
+    int candidates[4], votes[4], count = 0;
+    for (std::ptrdiff_t d : step) {
+      const int l = label[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d)];
+      if (l < 0) continue;
+      int k = 0;
+      while (k < count && candidates[k] != l) ++k;
+      if (k == count) candidates[count] = l, votes[count++] = 0;
+      ++votes[k];
     }
     int best = -1, best_votes = 0;
-    for (const auto& [l, v] : votes)
-      if (v > best_votes) best = l, best_votes = v;
+    for (int k = 0; k < count; ++k)
+      if (votes[k] > best_votes || (votes[k] == best_votes && candidates[k] < best)) best = candidates[k], best_votes = votes[k];
     return best;
   };
   std::vector<std::pair<std::size_t, int>> barrier_labels;
@@ -165,56 +215,79 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     if (barrier[i] && label[i] < 0) barrier_labels.push_back({i, majority_of_neighbours(i)});
   for (const auto& [i, l] : barrier_labels) label[i] = l;
 
-  // Every 4-connected piece of a label is its own region; pieces of one skeleton region beyond
-  // its largest and everything small then merge into neighbours.
-  std::vector<int> piece(N, -1);
+  // From here on the labelling is handled as horizontal runs of equal label: far fewer than
+  // cells. Every 4-connected piece of a label is its own region at first.
+  struct LabelRun {
+    int row, begin, end, label, piece;
+  };
+  std::vector<LabelRun> runs;
+  std::vector<std::size_t> row_start(static_cast<std::size_t>(H) + 1, 0);
+  for (int r = 0; r < H; ++r) {
+    row_start[r] = runs.size();
+    const int* row = &label[static_cast<std::size_t>(r) * W];
+    int c = 0;
+    while (c < W) {
+      const int l = row[c];
+      int end = c + 1;
+      while (end < W && row[end] == l) ++end;
+      if (l >= 0) runs.push_back({r, c, end, l, -1});
+      c = end;
+    }
+  }
+  row_start[H] = runs.size();
+  // Pieces: union-find over runs of equal label that overlap in consecutive rows.
+  std::vector<int> run_parent(runs.size());
+  std::iota(run_parent.begin(), run_parent.end(), 0);
+  auto find_run = [&](int i) {
+    while (run_parent[i] != i) i = run_parent[i] = run_parent[run_parent[i]];
+    return i;
+  };
+  // Calls fn(upper run, lower run, overlap length) for every pair of runs in consecutive rows
+  // that share a horizontal border.
+  auto for_each_vertical_contact = [&](auto&& fn) {
+    for (int r = 1; r < H; ++r) {
+      std::size_t j = row_start[r - 1];
+      for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
+        while (j < row_start[r] && runs[j].end <= runs[i].begin) ++j;
+        for (std::size_t k = j; k < row_start[r] && runs[k].begin < runs[i].end; ++k) {
+          fn(k, i, std::min(runs[k].end, runs[i].end) - std::max(runs[k].begin, runs[i].begin));
+        }
+      }
+    }
+  };
+  for_each_vertical_contact([&](std::size_t upper, std::size_t lower, int) {
+    if (runs[upper].label != runs[lower].label) return;
+    const int x = find_run(static_cast<int>(upper)), y = find_run(static_cast<int>(lower));
+    if (x != y) run_parent[std::max(x, y)] = std::min(x, y);
+  });
   std::vector<std::size_t> piece_size;
   std::vector<int> piece_region;
   {
-    std::vector<std::size_t> stack;
-    for (std::size_t start = 0; start < N; ++start) {
-      if (label[start] < 0 || piece[start] >= 0) continue;
-      const int id = static_cast<int>(piece_size.size());
-      std::size_t size = 0;
-      piece[start] = id;
-      stack.assign(1, start);
-      while (!stack.empty()) {
-        const std::size_t i = stack.back();
-        stack.pop_back();
-        ++size;
-        const int c = static_cast<int>(i % W), r = static_cast<int>(i / W);
-        const int dc[4] = {1, -1, 0, 0}, dr[4] = {0, 0, 1, -1};
-        for (int k = 0; k < 4; ++k) {
-          const int nc = c + dc[k], nr = r + dr[k];
-          if (nc < 0 || nr < 0 || nc >= W || nr >= H) continue;
-          const std::size_t j = static_cast<std::size_t>(nr) * W + nc;
-          if (piece[j] < 0 && label[j] == label[start]) {
-            piece[j] = id;
-            stack.push_back(j);
-          }
-        }
+    std::vector<int> piece_of_root(runs.size(), -1);
+    for (std::size_t i = 0; i < runs.size(); ++i) {  // pieces numbered in raster order of their first run
+      const int root = find_run(static_cast<int>(i));
+      if (piece_of_root[root] < 0) {
+        piece_of_root[root] = static_cast<int>(piece_size.size());
+        piece_size.push_back(0);
+        piece_region.push_back(runs[i].label);
       }
-      piece_size.push_back(size);
-      piece_region.push_back(label[start]);
+      runs[i].piece = piece_of_root[root];
+      piece_size[runs[i].piece] += static_cast<std::size_t>(runs[i].end - runs[i].begin);
     }
   }
   const std::size_t piece_count = piece_size.size();
   // Merging: repeatedly, the smallest piece below min_area joins the neighbour it shares most
   // border with. Union-find over pieces; borders counted once.
   std::map<std::pair<int, int>, std::size_t> border;
+  auto add_border = [&](int p, int q, std::size_t length) {
+    if (p != q) border[{std::min(p, q), std::max(p, q)}] += length;
+  };
   for (int r = 0; r < H; ++r)
-    for (int c = 0; c < W; ++c) {
-      const int p = piece[static_cast<std::size_t>(r) * W + c];
-      if (p < 0) continue;
-      if (c + 1 < W) {
-        const int q = piece[static_cast<std::size_t>(r) * W + c + 1];
-        if (q >= 0 && q != p) ++border[{std::min(p, q), std::max(p, q)}];
-      }
-      if (r + 1 < H) {
-        const int q = piece[static_cast<std::size_t>(r + 1) * W + c];
-        if (q >= 0 && q != p) ++border[{std::min(p, q), std::max(p, q)}];
-      }
-    }
+    for (std::size_t i = row_start[r]; i + 1 < row_start[r + 1]; ++i)
+      if (runs[i].end == runs[i + 1].begin) add_border(runs[i].piece, runs[i + 1].piece, 1);
+  for_each_vertical_contact([&](std::size_t upper, std::size_t lower, int overlap) {
+    add_border(runs[upper].piece, runs[lower].piece, static_cast<std::size_t>(overlap));
+  });
   std::vector<int> parent(piece_count);
   std::iota(parent.begin(), parent.end(), 0);
   auto find = [&](int p) {
@@ -224,54 +297,60 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   std::vector<std::size_t> size(piece_size);
   const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
   std::vector<bool> dropped(piece_count, false);
-  while (true) {
-    int smallest = -1;
-    for (std::size_t p = 0; p < piece_count; ++p) {
-      if (find(static_cast<int>(p)) != static_cast<int>(p) || dropped[p] || size[p] >= min_cells) continue;
-      if (smallest < 0 || size[p] < size[smallest]) smallest = static_cast<int>(p);
-    }
-    if (smallest < 0) break;
+  std::vector<std::map<int, std::size_t>> neighbours(piece_count);  // piece → border length
+  for (const auto& [pair, length] : border) {
+    neighbours[pair.first][pair.second] += length;
+    neighbours[pair.second][pair.first] += length;
+  }
+  // Smallest first (ties: lowest id); entries go stale when a piece grows or merges away.
+  using Entry = std::pair<std::size_t, int>;
+  std::priority_queue<Entry, std::vector<Entry>, std::greater<Entry>> small;
+  for (std::size_t p = 0; p < piece_count; ++p)
+    if (size[p] < min_cells) small.push({size[p], static_cast<int>(p)});
+  while (!small.empty()) {
+    const auto [entry_size, p] = small.top();
+    small.pop();
+    if (find(p) != p || dropped[p] || size[p] != entry_size) continue;
     std::map<int, std::size_t> shared;
-    for (const auto& [pair, count] : border) {
-      const int a = find(pair.first), b = find(pair.second);
-      if (a == b) continue;
-      if (a == smallest) shared[b] += count;
-      else if (b == smallest) shared[a] += count;
+    for (const auto& [q, length] : neighbours[p]) {
+      const int root = find(q);
+      if (root != p && !dropped[root]) shared[root] += length;
     }
     int target = -1;
     std::size_t most = 0;
-    for (const auto& [q, count] : shared)
-      if (count > most && !dropped[q]) target = q, most = count;
+    for (const auto& [q, length] : shared)
+      if (length > most) target = q, most = length;
     if (target < 0) {
-      dropped[smallest] = true;
+      dropped[p] = true;
       continue;
     }
-    parent[smallest] = target;
-    size[target] += size[smallest];
+    parent[p] = target;
+    size[target] += size[p];
+    for (const auto& [q, length] : shared) neighbours[target][q] += length;
+    neighbours[p].clear();
+    if (size[target] < min_cells) small.push({size[target], target});
   }
 
-  // Final ids: surviving roots in order of their first cell (raster order).
+  // Final ids: surviving roots in order of their first run (raster order).
   std::vector<int> area_of_root(piece_count, -1);
-  std::vector<int> root_of_area;
-  for (std::size_t i = 0; i < N; ++i) {
-    if (piece[i] < 0) continue;
-    const int root = find(piece[i]);
+  int area_count = 0;
+  for (auto& run : runs) {
+    const int root = find(run.piece);
     if (dropped[root]) {
-      label[i] = -1;
+      run.label = -1;
       continue;
     }
-    if (area_of_root[root] < 0) {
-      area_of_root[root] = static_cast<int>(root_of_area.size());
-      root_of_area.push_back(root);
-    }
-    label[i] = area_of_root[root];
+    if (area_of_root[root] < 0) area_of_root[root] = area_count++;
+    run.label = area_of_root[root];
   }
-  const int area_count = static_cast<int>(root_of_area.size());
 
   // Which skeleton region became which area: the area holding most of the region's cells.
+  // (Counted per piece: a piece lies wholly in one area.)
   std::vector<std::map<int, std::size_t>> region_votes(rooms.region_count());
-  for (std::size_t i = 0; i < N; ++i)
-    if (piece[i] >= 0 && label[i] >= 0) ++region_votes[piece_region[piece[i]]][label[i]];
+  for (std::size_t p = 0; p < piece_count; ++p) {
+    const int root = find(static_cast<int>(p));
+    if (!dropped[root]) region_votes[piece_region[p]][area_of_root[root]] += piece_size[p];
+  }
   std::vector<int> area_of_region(rooms.region_count(), -1);
   for (int r = 0; r < rooms.region_count(); ++r) {
     std::size_t most = 0;
@@ -279,26 +358,18 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       if (v > most) area_of_region[r] = a, most = v;
   }
 
-  // Areas: polygons from the labelled cells, and their measures.
+  // Areas: polygons from the labelled runs, and their measures.
   graph.areas.resize(area_count);
   {
-    std::vector<std::vector<boost::polygon::rectangle_data<int>>> runs(area_count);
-    for (int r = 0; r < H; ++r) {
-      int c = 0;
-      while (c < W) {
-        const int l = label[static_cast<std::size_t>(r) * W + c];
-        int end = c + 1;
-        while (end < W && label[static_cast<std::size_t>(r) * W + end] == l) ++end;
-        if (l >= 0) runs[l].emplace_back(c, r, end, r + 1);
-        c = end;
-      }
-    }
+    std::vector<std::vector<boost::polygon::rectangle_data<int>>> area_runs(area_count);
+    for (const auto& run : runs)
+      if (run.label >= 0) area_runs[run.label].emplace_back(run.begin, run.row, run.end, run.row + 1);
     for (int a = 0; a < area_count; ++a) {
       Area& area = graph.areas[a];
       area.id = a;
       area.size_m2 = 0.0;
       boost::polygon::polygon_90_set_data<int> cells;
-      for (const auto& run : runs[a]) {
+      for (const auto& run : area_runs[a]) {
         cells.insert(run);
         area.size_m2 += (boost::polygon::xh(run) - boost::polygon::xl(run)) * res * res;
       }
@@ -307,7 +378,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       auto to_ring = [&](auto begin, auto end) {
         bg::model::ring<Point2> ring;
         for (auto it = begin; it != end; ++it) {
-          const Eigen::Vector2d w = detail::lattice_to_world(grid, Eigen::Vector2d((*it).x(), (*it).y()));
+          const Eigen::Vector2d w = to_world(Eigen::Vector2d((*it).x(), (*it).y()));
           ring.push_back({w.x(), w.y()});
         }
         if (!ring.empty()) ring.push_back(ring.front());
@@ -357,8 +428,8 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     passage.kind = PassageKind::door;
     passage.area_a = areas.first;
     passage.area_b = areas.second;
-    passage.position = detail::lattice_to_world(grid, s.position);
-    const Eigen::Vector2d fa = detail::lattice_to_world(grid, s.foot_a), fb = detail::lattice_to_world(grid, s.foot_b);
+    passage.position = to_world(s.position);
+    const Eigen::Vector2d fa = to_world(s.foot_a), fb = to_world(s.foot_b);
     passage.width_m = (fb - fa).norm();
     passage.line = Segment2(to_point(fa), to_point(fb));
     graph.areas[areas.first].passages.push_back(passage.id);
@@ -366,8 +437,19 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     graph.passages.push_back(passage);
   }
 
+  // Labels back onto the whole grid.
   std::size_t labelled = 0;
-  for (std::size_t i = 0; i < N; ++i) labelled += label[i] >= 0 && grid.cells()[i] == CellState::free;
+  for (const auto& run : runs) {
+    if (run.label < 0) continue;
+    const int gr = run.row + space.offset_row;
+    if (gr < 0 || gr >= grid.height()) continue;
+    for (int c = run.begin; c < run.end; ++c) {
+      const int gc = c + space.offset_col;
+      if (gc < 0 || gc >= grid.width()) continue;
+      graph.labels[grid.index(gc, gr)] = run.label;
+      labelled += grid.at(gc, gr) == CellState::free;
+    }
+  }
   const std::size_t free_cells = grid.count().free;
   graph.covered_fraction = free_cells ? static_cast<double>(labelled) / free_cells : 0.0;
   return graph;

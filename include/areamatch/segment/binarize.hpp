@@ -5,6 +5,7 @@
 #include "../error.hpp"
 #include "../grid.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <string>
@@ -31,10 +32,15 @@ struct BinarizeParams {
   }
 };
 
-/// A binary free-space mask in image order (row 0 on top), 1 = free.
+/// A binary free-space mask (1 = free) over the bounding box of the free cells plus a border of
+/// one obstacle cell all round, so that no free cell touches the edge of the mask. Cell (c, r)
+/// of the mask is cell (c + offset_col, r + offset_row) of the source grid; the border may lie
+/// one cell outside the grid.
 struct FreeSpace {
   int width = 0;
   int height = 0;
+  int offset_col = 0;
+  int offset_row = 0;
   std::vector<std::uint8_t> free;
 
   bool is_free(int col, int row) const {
@@ -49,63 +55,110 @@ struct FreeSpace {
 
 namespace detail {
 
-/// Flood-fills every connected component of cells with `mask[i] == value` and calls
-/// `on_component(cells)` with its cell indices; `eight` chooses 8- over 4-connectivity.
+/// Connected components of the cells with `mask == value`, found on horizontal runs (fast on
+/// maps, which are long runs). Calls `on_component(runs)` with each component's runs as
+/// (row, first col, end col) triples.
+struct CellRun {
+  int row, begin, end;
+};
+
 template <class OnComponent>
-void for_each_component(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value, bool eight,
-                        OnComponent&& on_component) {
-  std::vector<std::uint8_t> seen(mask.size(), 0);
-  std::vector<std::size_t> cells;
-  for (std::size_t start = 0; start < mask.size(); ++start) {
-    if (mask[start] != value || seen[start]) continue;
-    cells.clear();
-    cells.push_back(start);
-    seen[start] = 1;
-    for (std::size_t head = 0; head < cells.size(); ++head) {
-      const int c = static_cast<int>(cells[head] % width), r = static_cast<int>(cells[head] / width);
-      for (int dr = -1; dr <= 1; ++dr) {
-        for (int dc = -1; dc <= 1; ++dc) {
-          if ((dr == 0 && dc == 0) || (!eight && dr != 0 && dc != 0)) continue;
-          const int nc = c + dc, nr = r + dr;
-          if (nc < 0 || nr < 0 || nc >= width || nr >= height) continue;
-          const std::size_t j = static_cast<std::size_t>(nr) * width + nc;
-          if (mask[j] == value && !seen[j]) {
-            seen[j] = 1;
-            cells.push_back(j);
-          }
-        }
+void for_each_run_component(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value, bool eight,
+                            OnComponent&& on_component) {
+  std::vector<CellRun> runs;
+  std::vector<std::size_t> row_start(static_cast<std::size_t>(height) + 1, 0);
+  for (int r = 0; r < height; ++r) {
+    row_start[r] = runs.size();
+    const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * width];
+    int c = 0;
+    while (c < width) {
+      if (row[c] != value) {
+        ++c;
+        continue;
+      }
+      const int begin = c;
+      while (c < width && row[c] == value) ++c;
+      runs.push_back({r, begin, c});
+    }
+  }
+  row_start[height] = runs.size();
+  std::vector<std::size_t> parent(runs.size());
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  const int reach = eight ? 1 : 0;  // 8-connectivity also joins runs touching at a corner
+  for (int r = 1; r < height; ++r) {
+    std::size_t j = row_start[r - 1];
+    for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
+      while (j < row_start[r] && runs[j].end + reach <= runs[i].begin) ++j;
+      for (std::size_t k = j; k < row_start[r] && runs[k].begin < runs[i].end + reach; ++k) {
+        const std::size_t a = find(i), b = find(k);
+        if (a != b) parent[std::max(a, b)] = std::min(a, b);
       }
     }
-    on_component(cells);
   }
+  std::vector<std::vector<CellRun>> components(runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) components[find(i)].push_back(runs[i]);
+  for (const auto& component : components)
+    if (!component.empty()) on_component(component);
 }
 
 }  // namespace detail
 
-/// Free cells of `grid` (unknown per `params`), without obstacle speckles and free crumbs.
+/// Free cells of `grid` (unknown per `params`), without obstacle speckles and free crumbs,
+/// cropped to where the free space is.
 inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& params = {}) {
   params.validate();
-  FreeSpace space;
-  space.width = grid.width();
-  space.height = grid.height();
-  space.free.resize(grid.cells().size());
-  for (std::size_t i = 0; i < space.free.size(); ++i) {
-    const CellState s = grid.cells()[i];
-    space.free[i] = s == CellState::free || (params.unknown_is_free && s == CellState::unknown);
+  auto is_free = [&](CellState s) { return s == CellState::free || (params.unknown_is_free && s == CellState::unknown); };
+  int min_c = grid.width(), max_c = -1, min_r = grid.height(), max_r = -1;
+  for (int r = 0; r < grid.height(); ++r) {
+    const CellState* row = &grid.cells()[grid.index(0, r)];
+    for (int c = 0; c < grid.width(); ++c) {
+      if (!is_free(row[c])) continue;
+      min_c = std::min(min_c, c), max_c = std::max(max_c, c);
+      min_r = std::min(min_r, r), max_r = std::max(max_r, r);
+    }
   }
+  FreeSpace space;
+  if (max_c < 0) return space;  // no free cell at all
+  space.offset_col = min_c - 1;
+  space.offset_row = min_r - 1;
+  space.width = max_c - min_c + 3;
+  space.height = max_r - min_r + 3;
+  space.free.assign(static_cast<std::size_t>(space.width) * space.height, 0);
+  for (int r = 1; r + 1 < space.height; ++r)
+    for (int c = 1; c + 1 < space.width; ++c)
+      space.free[static_cast<std::size_t>(r) * space.width + c] =
+          is_free(grid.at(c + space.offset_col, r + space.offset_row));
+
   const double cell_area = grid.resolution() * grid.resolution();
+  auto size_of = [](const std::vector<detail::CellRun>& runs) {
+    std::size_t n = 0;
+    for (const auto& run : runs) n += static_cast<std::size_t>(run.end - run.begin);
+    return n;
+  };
+  auto fill = [&](const std::vector<detail::CellRun>& runs, std::uint8_t value) {
+    for (const auto& run : runs)
+      std::fill(space.free.begin() + static_cast<std::ptrdiff_t>(run.row) * space.width + run.begin,
+                space.free.begin() + static_cast<std::ptrdiff_t>(run.row) * space.width + run.end, value);
+  };
   const auto max_speckle = static_cast<std::size_t>(std::floor(params.max_speckle_area_m2 / cell_area));
   if (max_speckle > 0) {
-    auto copy = space.free;
-    detail::for_each_component(copy, space.width, space.height, 0, true, [&](const std::vector<std::size_t>& cells) {
-      if (cells.size() <= max_speckle) for (std::size_t i : cells) space.free[i] = 1;
+    const auto copy = space.free;
+    detail::for_each_run_component(copy, space.width, space.height, 0, true, [&](const std::vector<detail::CellRun>& runs) {
+      const bool touches_border = std::any_of(runs.begin(), runs.end(), [&](const detail::CellRun& run) {
+        return run.row == 0 || run.row == space.height - 1 || run.begin == 0 || run.end == space.width;
+      });
+      if (!touches_border && size_of(runs) <= max_speckle) fill(runs, 1);
     });
   }
   const auto min_free = static_cast<std::size_t>(std::ceil(params.min_free_area_m2 / cell_area));
   if (min_free > 1) {
-    auto copy = space.free;
-    detail::for_each_component(copy, space.width, space.height, 1, false, [&](const std::vector<std::size_t>& cells) {
-      if (cells.size() < min_free) for (std::size_t i : cells) space.free[i] = 0;
+    const auto copy = space.free;
+    detail::for_each_run_component(copy, space.width, space.height, 1, false, [&](const std::vector<detail::CellRun>& runs) {
+      if (size_of(runs) < min_free) fill(runs, 0);
     });
   }
   return space;

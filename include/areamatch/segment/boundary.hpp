@@ -44,7 +44,7 @@ using LatticeSegment = boost::polygon::segment_data<int>;
 struct BoundaryParams {
   /// Douglas–Peucker tolerance: how far a simplified wall may stray from the pixel boundary.
   /// 0 keeps every corner (exact staircases); larger values give far fewer Voronoi sites.
-  double simplify_tolerance_m = 0.05;
+  double simplify_tolerance_m = 0.1;
 
   void validate() const {
     if (!(std::isfinite(simplify_tolerance_m) && simplify_tolerance_m >= 0.0)) {
@@ -58,7 +58,7 @@ struct BoundarySegments {
   std::vector<LatticeSegment> segments;
   std::vector<int> ring_of_segment;  ///< which ring each segment came from
   std::size_t ring_count = 0;
-  std::size_t reverted_rings = 0;    ///< rings left unsimplified to keep the input valid
+  std::size_t reverted_rings = 0;    ///< rings with stretches put back unsimplified to keep the input valid
 };
 
 namespace detail {
@@ -71,68 +71,59 @@ struct TracedRings {
 };
 
 inline TracedRings trace_rings(const FreeSpace& space) {
+  // Contour following on cell sides. Side k of a free cell: 0 top, 1 left, 2 bottom, 3 right,
+  // walked with the cell on the left (top westwards, left southwards, …). Travel direction of
+  // side k is the outward normal of side k + 1.
+  static const int nx[4] = {0, -1, 0, 1}, ny[4] = {-1, 0, 1, 0};   // outward normals
+  static const int sx[4] = {1, 0, 0, 1}, sy[4] = {0, 0, 1, 1};     // start vertex offsets
   const int W = space.width, H = space.height;
-  const int VW = W + 1;
-  // Directed unit edges with the free cell on their left in image coordinates
-  // (a single free cell is walked top → left → bottom → right). Direction: 0 E, 1 S, 2 W, 3 N.
-  static const int dx[4] = {1, 0, -1, 0}, dy[4] = {0, 1, 0, -1};
-  struct Edge {
-    int vertex;  // start vertex index y·VW + x
-    std::uint8_t dir;
-    std::size_t cell;
-  };
-  std::vector<Edge> edges;
-  // Up to two outgoing edges per vertex (two at a pinch); −1 = none.
-  std::vector<std::int32_t> out_first(static_cast<std::size_t>(VW) * (H + 1), -1), out_second;
-  std::unordered_map<int, std::int32_t> second_out;  // rare: pinch vertices only
-  auto add_edge = [&](int x, int y, std::uint8_t dir, std::size_t cell) {
-    const int v = y * VW + x;
-    const auto id = static_cast<std::int32_t>(edges.size());
-    edges.push_back({v, dir, cell});
-    if (out_first[v] < 0) out_first[v] = id;
-    else second_out[v] = id;
-  };
-  for (int r = 0; r < H; ++r) {
-    for (int c = 0; c < W; ++c) {
-      if (!space.is_free(c, r)) continue;
-      const std::size_t cell = static_cast<std::size_t>(r) * W + c;
-      if (!space.is_free(c, r - 1)) add_edge(c + 1, r, 2, cell);      // top, westwards
-      if (!space.is_free(c - 1, r)) add_edge(c, r, 1, cell);          // left, southwards
-      if (!space.is_free(c, r + 1)) add_edge(c, r + 1, 0, cell);      // bottom, eastwards
-      if (!space.is_free(c + 1, r)) add_edge(c + 1, r + 1, 3, cell);  // right, northwards
-    }
-  }
   TracedRings traced;
-  std::vector<std::uint8_t> used(edges.size(), 0);
-  for (std::size_t start = 0; start < edges.size(); ++start) {
-    if (used[start]) continue;
-    std::vector<LatticePoint> ring;
-    std::vector<bool> pinned;
-    std::size_t e = start;
-    int previous_dir = -1;
-    while (!used[e]) {
-      used[e] = 1;
-      const Edge& edge = edges[e];
-      const int x = edge.vertex % VW, y = edge.vertex / VW;
-      if (edge.dir != previous_dir) {
-        ring.push_back({x, y});
-        pinned.push_back(second_out.count(edge.vertex) != 0);
+  if (W == 0 || H == 0) return traced;
+  auto free_at = [&](int c, int r) { return space.is_free(c, r); };
+  auto boundary_side = [&](int c, int r, int k) { return !free_at(c + nx[k], r + ny[k]); };
+  auto is_pinch = [&](int x, int y) {  // vertex (x, y) where free cells touch only diagonally
+    const bool tl = free_at(x - 1, y - 1), tr = free_at(x, y - 1), bl = free_at(x - 1, y), br = free_at(x, y);
+    return tl == br && tr == bl && tl != tr;
+  };
+  std::vector<std::uint8_t> visited(static_cast<std::size_t>(W) * H, 0);
+  for (int r0 = 0; r0 < H; ++r0) {
+    for (int c0 = 0; c0 < W; ++c0) {
+      if (!free_at(c0, r0)) continue;
+      for (int k0 = 0; k0 < 4; ++k0) {
+        if (!boundary_side(c0, r0, k0) || (visited[static_cast<std::size_t>(r0) * W + c0] >> k0 & 1)) continue;
+        std::vector<LatticePoint> ring;
+        std::vector<bool> pinned;
+        int c = c0, r = r0, k = k0, previous = -1;
+        while (!(visited[static_cast<std::size_t>(r) * W + c] >> k & 1)) {
+          visited[static_cast<std::size_t>(r) * W + c] |= static_cast<std::uint8_t>(1 << k);
+          if (k != previous) {  // a corner: the walk changes direction here
+            const int x = c + sx[k], y = r + sy[k];
+            ring.push_back({x, y});
+            pinned.push_back(is_pinch(x, y));
+          }
+          previous = k;
+          const int next = (k + 1) & 3;
+          const int ahead_c = c + nx[next], ahead_r = r + ny[next];
+          if (boundary_side(c, r, next)) {
+            k = next;  // turn around this cell (at a pinch this keeps diagonal cells apart)
+          } else if (free_at(ahead_c + nx[k], ahead_r + ny[k])) {
+            c = ahead_c + nx[k];  // turn the other way, onto the diagonal cell
+            r = ahead_r + ny[k];
+            k = (k + 3) & 3;
+          } else {
+            c = ahead_c;  // straight on along the next cell's same side
+            r = ahead_r;
+          }
+        }
+        // The first vertex is a corner only if the walk turns there.
+        if (ring.size() > 1 && previous == k0) {
+          ring.erase(ring.begin());
+          pinned.erase(pinned.begin());
+        }
+        traced.rings.push_back(std::move(ring));
+        traced.pinned.push_back(std::move(pinned));
       }
-      previous_dir = edge.dir;
-      const int next_vertex = (y + dy[edge.dir]) * VW + (x + dx[edge.dir]);
-      auto next = static_cast<std::size_t>(out_first[next_vertex]);
-      const auto pinch = second_out.find(next_vertex);
-      // At a pinch, stay on the boundary of the same free cell: it keeps diagonal neighbours apart.
-      if (pinch != second_out.end() && edges[next].cell != edge.cell) next = static_cast<std::size_t>(pinch->second);
-      e = next;
     }
-    // The start vertex is a corner only if the direction changes there.
-    if (ring.size() > 1 && edges[start].dir == previous_dir) {
-      ring.erase(ring.begin());
-      pinned.erase(pinned.begin());
-    }
-    traced.rings.push_back(std::move(ring));
-    traced.pinned.push_back(std::move(pinned));
   }
   return traced;
 }
@@ -144,12 +135,12 @@ inline double distance_to_line(const LatticePoint& p, const LatticePoint& a, con
   return std::abs(ux * (p.y - a.y) - uy * (p.x - a.x)) / length;
 }
 
-/// Douglas–Peucker on a closed ring; pinned vertices are always kept. Returns the ring unchanged
-/// when simplification would leave fewer than 3 vertices.
-inline std::vector<LatticePoint> simplify_ring(const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned,
-                                               double tolerance) {
+/// Douglas–Peucker on a closed ring: which vertices to keep. Pinned vertices are always kept;
+/// all are kept when simplification would leave fewer than 3.
+inline std::vector<bool> simplify_ring(const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned,
+                                       double tolerance) {
   const std::size_t n = ring.size();
-  if (tolerance <= 0.0 || n <= 4) return ring;
+  if (tolerance <= 0.0 || n <= 4) return std::vector<bool>(n, true);
   std::vector<bool> keep(pinned.begin(), pinned.end());
   // Anchors: the smallest vertex (deterministic) and the one farthest from it, plus pins.
   std::size_t first = 0;
@@ -188,10 +179,8 @@ inline std::vector<LatticePoint> simplify_ring(const std::vector<LatticePoint>& 
       stack.push_back({(from + worst_step) % n, steps - worst_step});
     }
   }
-  std::vector<LatticePoint> out;
-  for (std::size_t i = 0; i < n; ++i)
-    if (keep[i]) out.push_back(ring[i]);
-  return out.size() >= 3 ? out : ring;
+  if (std::count(keep.begin(), keep.end(), true) < 3) keep.assign(n, true);
+  return keep;
 }
 
 inline long long orientation(const LatticePoint& a, const LatticePoint& b, const LatticePoint& c) {
@@ -264,42 +253,52 @@ inline std::vector<std::size_t> find_conflicts(const std::vector<LatticeSegment>
 }  // namespace detail
 
 /// Traces, simplifies and validates the obstacle boundary of `space` (see the file comment).
+/// Where a simplified segment breaks the Voronoi input contract, the corners it skipped are put
+/// back — only on that stretch of the ring — until no conflict is left.
 inline BoundarySegments trace_boundary(const FreeSpace& space, double resolution, const BoundaryParams& params = {}) {
   params.validate();
   const detail::TracedRings traced = detail::trace_rings(space);
   const double tolerance = params.simplify_tolerance_m / resolution;
   const std::size_t ring_count = traced.rings.size();
-  std::vector<std::vector<LatticePoint>> rings(ring_count);
-  for (std::size_t i = 0; i < ring_count; ++i) rings[i] = detail::simplify_ring(traced.rings[i], traced.pinned[i], tolerance);
+  std::vector<std::vector<bool>> keep(ring_count);
+  for (std::size_t i = 0; i < ring_count; ++i) keep[i] = detail::simplify_ring(traced.rings[i], traced.pinned[i], tolerance);
 
   BoundarySegments out;
   out.ring_count = ring_count;
-  std::vector<bool> reverted(ring_count, false);
+  std::vector<std::pair<std::size_t, std::size_t>> span_of_segment;  // (ring, first corner index)
+  std::vector<bool> restored(ring_count, false);
   while (true) {
     out.segments.clear();
     out.ring_of_segment.clear();
+    span_of_segment.clear();
     for (std::size_t i = 0; i < ring_count; ++i) {
-      const auto& ring = reverted[i] ? traced.rings[i] : rings[i];
-      for (std::size_t k = 0; k < ring.size(); ++k) {
-        const LatticePoint& a = ring[k];
-        const LatticePoint& b = ring[(k + 1) % ring.size()];
+      const auto& ring = traced.rings[i];
+      std::vector<std::size_t> kept;
+      for (std::size_t k = 0; k < ring.size(); ++k)
+        if (keep[i][k]) kept.push_back(k);
+      for (std::size_t k = 0; k < kept.size(); ++k) {
+        const LatticePoint& a = ring[kept[k]];
+        const LatticePoint& b = ring[kept[(k + 1) % kept.size()]];
         out.segments.emplace_back(boost::polygon::point_data<int>(a.x, a.y), boost::polygon::point_data<int>(b.x, b.y));
         out.ring_of_segment.push_back(static_cast<int>(i));
+        span_of_segment.push_back({i, kept[k]});
       }
     }
     const auto conflicts = detail::find_conflicts(out.segments);
     if (conflicts.empty()) break;
     bool changed = false;
     for (std::size_t s : conflicts) {
-      const auto ring = static_cast<std::size_t>(out.ring_of_segment[s]);
-      if (!reverted[ring]) reverted[ring] = changed = true;
+      const auto [ring, first] = span_of_segment[s];
+      auto& flags = keep[ring];
+      const std::size_t n = flags.size();
+      for (std::size_t k = (first + 1) % n; !flags[k]; k = (k + 1) % n) flags[k] = changed = restored[ring] = true;
     }
     if (!changed) {
       // Unsimplified rings satisfy the contract by construction; getting here is a bug.
       throw error("trace_boundary: boundary segments violate the Voronoi input contract");
     }
   }
-  out.reverted_rings = static_cast<std::size_t>(std::count(reverted.begin(), reverted.end(), true));
+  out.reverted_rings = static_cast<std::size_t>(std::count(restored.begin(), restored.end(), true));
   return out;
 }
 

@@ -51,6 +51,9 @@ struct SkeletonBranch {
 };
 
 struct Skeleton {
+  /// Lattice coordinates here are those of the cropped free-space mask; add this offset for the
+  /// source grid's pixel-corner lattice.
+  Eigen::Vector2d lattice_offset = Eigen::Vector2d::Zero();
   std::vector<SkeletonNode> nodes;
   std::vector<SkeletonBranch> branches;
   std::size_t voronoi_edges = 0;  ///< primary finite edges examined
@@ -161,6 +164,7 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   const double min_clearance = params.min_clearance_m / resolution;
   const double step = params.sample_step_m / resolution;
   Skeleton skeleton;
+  skeleton.lattice_offset = Eigen::Vector2d(space.offset_col, space.offset_row);
   if (boundary.segments.empty()) return skeleton;
 
   bp::voronoi_diagram<double> diagram;
