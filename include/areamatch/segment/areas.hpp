@@ -110,6 +110,39 @@ inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) 
   return core;
 }
 
+/// Splits a closed lattice ring (first vertex not repeated) wherever it passes through the same
+/// vertex twice. Boost.Polygon returns such "pinched" rings where a hole touches the outside at a
+/// corner; Boost.Geometry rejects them, but accepts the loops as separate rings.
+inline std::vector<std::vector<Eigen::Vector2i>> split_pinched_ring(std::vector<Eigen::Vector2i> ring) {
+  std::vector<std::vector<Eigen::Vector2i>> loops;
+  bool split = true;
+  while (split) {
+    split = false;
+    std::map<std::pair<int, int>, std::size_t> seen;
+    for (std::size_t i = 0; i < ring.size() && !split; ++i) {
+      const auto [it, inserted] = seen.insert({{ring[i].x(), ring[i].y()}, i});
+      if (inserted) continue;
+      // ring[it->second .. i) is a closed loop through the repeated vertex: cut it out.
+      loops.emplace_back(ring.begin() + static_cast<std::ptrdiff_t>(it->second), ring.begin() + static_cast<std::ptrdiff_t>(i));
+      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(it->second), ring.begin() + static_cast<std::ptrdiff_t>(i));
+      split = true;
+    }
+  }
+  loops.push_back(std::move(ring));
+  return loops;
+}
+
+/// Twice the signed area of a lattice ring.
+inline long long signed_area2(const std::vector<Eigen::Vector2i>& ring) {
+  long long sum = 0;
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    const auto& a = ring[i];
+    const auto& b = ring[(i + 1) % ring.size()];
+    sum += static_cast<long long>(a.x()) * b.y() - static_cast<long long>(b.x()) * a.y();
+  }
+  return sum;
+}
+
 inline Eigen::Vector2d lattice_to_world(const OccupancyGrid& grid, const Eigen::Vector2d& p) {
   return grid.pixel_to_world(p - Eigen::Vector2d(0.5, 0.5));
 }
@@ -375,10 +408,15 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       }
       std::vector<boost::polygon::polygon_90_with_holes_data<int>> polygons;
       cells.get(polygons);
-      auto to_ring = [&](auto begin, auto end) {
+      auto lattice_ring = [](auto begin, auto end) {
+        std::vector<Eigen::Vector2i> ring;
+        for (auto it = begin; it != end; ++it) ring.emplace_back((*it).x(), (*it).y());
+        return ring;
+      };
+      auto world_ring = [&](const std::vector<Eigen::Vector2i>& lattice) {
         bg::model::ring<Point2> ring;
-        for (auto it = begin; it != end; ++it) {
-          const Eigen::Vector2d w = to_world(Eigen::Vector2d((*it).x(), (*it).y()));
+        for (const auto& v : lattice) {
+          const Eigen::Vector2d w = to_world(v.cast<double>());
           ring.push_back({w.x(), w.y()});
         }
         if (!ring.empty()) ring.push_back(ring.front());
@@ -386,9 +424,21 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       };
       double best = -1.0;
       for (const auto& p : polygons) {
+        // The outer ring's largest loop is the outline; loops turning the other way are holes
+        // touching it at a corner (loops turning the same way would be separate parts, which a
+        // 4-connected area does not have).
+        auto loops = detail::split_pinched_ring(lattice_ring(p.begin(), p.end()));
+        std::sort(loops.begin(), loops.end(), [](const auto& x, const auto& y) {
+          return std::llabs(detail::signed_area2(x)) > std::llabs(detail::signed_area2(y));
+        });
+        const bool outline_positive = detail::signed_area2(loops.front()) > 0;
         Polygon2 polygon;
-        polygon.outer() = to_ring(p.begin(), p.end());
-        for (auto h = p.begin_holes(); h != p.end_holes(); ++h) polygon.inners().push_back(to_ring(h->begin(), h->end()));
+        polygon.outer() = world_ring(loops.front());
+        for (std::size_t k = 1; k < loops.size(); ++k)
+          if ((detail::signed_area2(loops[k]) > 0) != outline_positive) polygon.inners().push_back(world_ring(loops[k]));
+        for (auto h = p.begin_holes(); h != p.end_holes(); ++h)
+          for (const auto& loop : detail::split_pinched_ring(lattice_ring(h->begin(), h->end())))
+            polygon.inners().push_back(world_ring(loop));
         bg::correct(polygon);
         const double size = bg::area(polygon);
         if (size > best) best = size, area.polygon = std::move(polygon);

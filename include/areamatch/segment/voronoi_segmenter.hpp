@@ -72,6 +72,11 @@ struct VoronoiSegmenter {
     using clock = std::chrono::steady_clock;
     auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
     if (grid.empty()) throw parameter_error("cannot segment an empty grid");
+    params.binarize.validate();
+    params.boundary.validate();
+    params.skeleton.validate();
+    params.rooms.validate();
+    params.areas.validate();
     // Parameters that must agree between stages are derived from one place.
     SkeletonParams skeleton_params = params.skeleton;
     skeleton_params.keep_clearance_m = 0.5 * params.rooms.door_width_m;

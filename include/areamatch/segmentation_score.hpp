@@ -1,0 +1,77 @@
+#pragma once
+/// \file segmentation_score.hpp
+/// Room recall and precision of a segmentation against a hand-made room segmentation, as in
+/// Bormann et al. 2016 (and `shared/tools/segscore.py`, which these functions agree with):
+/// - recall: per ground-truth room, the largest share of it covered by one area, averaged;
+/// - precision: per area, the largest share of it inside one ground-truth room, averaged.
+/// Rooms and areas smaller than `min_cells` are ignored (200 cells = 0.5 m² at 0.05 m).
+
+#include "detail/run_components.hpp"
+#include "image.hpp"
+
+#include <algorithm>
+#include <cstdint>
+#include <map>
+#include <vector>
+
+namespace areamatch {
+
+struct SegmentationScore {
+  double recall = 0.0;
+  double precision = 0.0;
+  std::size_t rooms = 0;  ///< ground-truth rooms counted
+  std::size_t areas = 0;  ///< areas counted
+};
+
+/// Ground-truth rooms of a Bormann-style segmentation image: 4-connected regions of near-white
+/// pixels (8-bit value ≥ `white`), numbered from 0 in raster order; −1 elsewhere.
+inline std::vector<int> rooms_from_image(const GreyImage& image, int white = 250) {
+  std::vector<std::uint8_t> mask(image.values.size());
+  for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = image.value8(i) >= white;
+  std::vector<int> rooms(mask.size(), -1);
+  int next = 0;
+  detail::for_each_run_component(mask, image.width, image.height, 1, false, [&](const std::vector<detail::CellRun>& runs) {
+    for (const auto& run : runs)
+      std::fill(rooms.begin() + static_cast<std::ptrdiff_t>(run.row) * image.width + run.begin,
+                rooms.begin() + static_cast<std::ptrdiff_t>(run.row) * image.width + run.end, next);
+    ++next;
+  });
+  return rooms;
+}
+
+/// Scores `labels` (area id per cell, −1 for none) against `rooms` (room id per cell, −1 for
+/// none); both of the same size.
+inline SegmentationScore score_segmentation(const std::vector<int>& labels, const std::vector<int>& rooms,
+                                            std::size_t min_cells = 200) {
+  SegmentationScore score;
+  if (labels.size() != rooms.size()) return score;
+  std::map<int, std::size_t> room_size, area_size;
+  std::map<std::pair<int, int>, std::size_t> overlap;  // (room, area) → cells
+  for (std::size_t i = 0; i < labels.size(); ++i) {
+    if (rooms[i] >= 0) ++room_size[rooms[i]];
+    if (labels[i] >= 0) ++area_size[labels[i]];
+    if (rooms[i] >= 0 && labels[i] >= 0) ++overlap[{rooms[i], labels[i]}];
+  }
+  std::map<int, std::size_t> best_for_room, best_for_area;
+  for (const auto& [key, count] : overlap) {
+    const auto [room, area] = key;
+    best_for_room[room] = std::max(best_for_room[room], count);  // any area, as segscore.py
+    if (room_size[room] >= min_cells) best_for_area[area] = std::max(best_for_area[area], count);
+  }
+  double recall = 0.0, precision = 0.0;
+  for (const auto& [room, size] : room_size) {
+    if (size < min_cells) continue;
+    ++score.rooms;
+    recall += static_cast<double>(best_for_room[room]) / size;
+  }
+  for (const auto& [area, size] : area_size) {
+    if (size < min_cells) continue;
+    ++score.areas;
+    precision += static_cast<double>(best_for_area[area]) / size;
+  }
+  score.recall = score.rooms ? recall / score.rooms : 0.0;
+  score.precision = score.areas ? precision / score.areas : 0.0;
+  return score;
+}
+
+}  // namespace areamatch

@@ -1,0 +1,270 @@
+// The Voronoi segmenter: Boost.Polygon's input contract on nasty shapes, rooms and doors of
+// synthetic buildings, valid non-overlapping polygons, determinism, and bad input.
+#include <areamatch/areamatch.hpp>
+#include <areamatch/detail/random.hpp>
+#include <areamatch/segmentation_score.hpp>
+
+#include <doctest/doctest.h>
+
+#include <string>
+#include <vector>
+
+using namespace areamatch;
+
+namespace {
+
+/// A grid from text: '#' occupied, '.' free, '?' unknown; 0.1 m cells.
+OccupancyGrid grid_from_text(const std::vector<std::string>& rows, double resolution = 0.1) {
+  OccupancyGrid g(static_cast<int>(rows.front().size()), static_cast<int>(rows.size()), resolution);
+  for (int r = 0; r < g.height(); ++r)
+    for (int c = 0; c < g.width(); ++c)
+      g.set(c, r, rows[r][c] == '#' ? CellState::occupied : rows[r][c] == '.' ? CellState::free : CellState::unknown);
+  return g;
+}
+
+void check_boundary_contract(const OccupancyGrid& g) {
+  BinarizeParams keep_everything;
+  keep_everything.max_speckle_area_m2 = 0.0;
+  keep_everything.min_free_area_m2 = 0.0;
+  const FreeSpace space = binarize(g, keep_everything);
+  for (double tolerance : {0.0, 0.05, 0.1, 0.3}) {
+    BoundaryParams params;
+    params.simplify_tolerance_m = tolerance;
+    const BoundarySegments boundary = trace_boundary(space, g.resolution(), params);
+    CHECK(detail::find_conflicts(boundary.segments).empty());
+    // The Voronoi builder accepts it and the skeleton stays in free space.
+    const Skeleton skeleton = build_skeleton(space, boundary, g.resolution());
+    for (const auto& branch : skeleton.branches)
+      for (const auto& s : branch.samples)
+        CHECK(space.is_free(static_cast<int>(std::floor(s.position.x())), static_cast<int>(std::floor(s.position.y()))));
+  }
+}
+
+void check_graph_invariants(const AreaGraph& graph) {
+  for (const auto& area : graph.areas) {
+    std::string reason;
+    CHECK_MESSAGE(bg::is_valid(area.polygon, reason), "area ", area.id, ": ", reason);
+    CHECK(area.size_m2 > 0.0);
+    CHECK(std::is_sorted(area.passages.begin(), area.passages.end()));
+  }
+  for (const auto& p : graph.passages) {
+    CHECK(p.area_a >= 0);
+    CHECK(p.area_b > p.area_a);  // two distinct areas, ordered
+    CHECK(p.area_b < static_cast<int>(graph.areas.size()));
+    CHECK(p.width_m > 0.0);
+  }
+  // Every labelled cell lies in its area's polygon (so areas cannot overlap).
+  OccupancyGrid frame(graph.grid.width, graph.grid.height, graph.grid.resolution, graph.grid.origin);
+  std::size_t outside = 0, labelled = 0;
+  for (int r = 0; r < frame.height(); r += 3)
+    for (int c = 0; c < frame.width(); c += 3) {
+      const int l = graph.labels[frame.index(c, r)];
+      if (l < 0) continue;
+      ++labelled;
+      const Eigen::Vector2d p = frame.cell_center(c, r);
+      outside += !bg::within(Point2(p.x(), p.y()), graph.areas[l].polygon);
+    }
+  CHECK(outside == 0);
+  CHECK((labelled > 0 || graph.areas.empty()));
+}
+
+}  // namespace
+
+TEST_CASE("boundary segments satisfy Boost.Polygon's contract on nasty shapes") {
+  SUBCASE("touching corners (free cells meeting diagonally)") {
+    check_boundary_contract(grid_from_text({"########", "#..#...#", "#..#...#", "###.####", "#..#...#", "#.#.#..#", "########"}));
+  }
+  SUBCASE("one-pixel walls and holes") {
+    check_boundary_contract(grid_from_text({"##########", "#....#...#", "#.##.#.#.#", "#.##.#...#", "#....#.#.#",
+                                            "######...#", "#........#", "##########"}));
+  }
+  SUBCASE("diagonal staircases") {
+    std::vector<std::string> rows(40, std::string(40, '.'));
+    for (int i = 0; i < 40; ++i) {
+      rows[i][i] = '#';
+      rows[i][std::min(39, i + 1)] = '#';
+      rows[i][39 - i] = '#';
+    }
+    rows.front().assign(40, '#');
+    rows.back().assign(40, '#');
+    check_boundary_contract(grid_from_text(rows, 0.05));
+  }
+  SUBCASE("isolated single pixels and checkerboards") {
+    std::vector<std::string> rows(30, std::string(30, '.'));
+    for (int r = 5; r < 25; ++r)
+      for (int c = 5; c < 25; ++c)
+        if ((r + c) % 2 == 0) rows[r][c] = '#';
+    rows[2][2] = '#';
+    check_boundary_contract(grid_from_text(rows, 0.05));
+  }
+  SUBCASE("random blobs") {
+    detail::Random random(7);
+    for (int trial = 0; trial < 20; ++trial) {
+      std::vector<std::string> rows(50, std::string(60, '.'));
+      for (int k = 0; k < 300; ++k) rows[random.integer(0, 49)][random.integer(0, 59)] = '#';
+      check_boundary_contract(grid_from_text(rows, 0.05));
+    }
+  }
+}
+
+TEST_CASE("synthetic buildings: every room is one area, every door one passage near it") {
+  const CorridorLayout layouts[] = {CorridorLayout::straight, CorridorLayout::l_shape, CorridorLayout::t_shape,
+                                    CorridorLayout::loop};
+  std::size_t rooms = 0, rooms_found = 0, doors = 0, doors_found = 0;
+  for (CorridorLayout layout : layouts) {
+    for (std::uint64_t seed = 1; seed <= 3; ++seed) {
+      BuildingParams params;
+      params.layout = layout;
+      params.width_m = 30;
+      params.height_m = 22;
+      const auto building = generate_building(params, seed);
+      const AreaGraph graph = VoronoiSegmenter{}.segment(building.layout);
+      INFO("layout " << static_cast<int>(layout) << " seed " << seed);
+      check_graph_invariants(graph);
+      // Each room: one area holds ≥ 95 % of it and is ≥ 95 % inside it.
+      const SegmentationScore score = score_segmentation(graph.labels, building.labels, 1);
+      CHECK(score.recall > 0.95);
+      for (const auto& area : building.areas) {
+        if (area.corridor) continue;
+        ++rooms;
+        std::map<int, std::size_t> votes;
+        std::size_t size = 0;
+        for (std::size_t i = 0; i < building.labels.size(); ++i) {
+          if (building.labels[i] != area.id) continue;
+          ++size;
+          if (graph.labels[i] >= 0) ++votes[graph.labels[i]];
+        }
+        std::size_t best = 0;
+        int best_area = -1;
+        for (const auto& [a, v] : votes)
+          if (v > best) best = v, best_area = a;
+        std::size_t best_size = 0;
+        for (int l : graph.labels) best_size += l == best_area;
+        rooms_found += best >= 0.95 * size && best >= 0.95 * best_size;
+      }
+      for (const auto& door : building.doors) {
+        ++doors;
+        std::size_t near = 0;
+        for (const auto& p : graph.passages) near += (p.position - door.position).norm() <= 0.3;
+        doors_found += near == 1;
+      }
+    }
+  }
+  MESSAGE("rooms found as one area: " << rooms_found << "/" << rooms << ", doors with one passage within 0.3 m: "
+                                      << doors_found << "/" << doors);
+  CHECK(rooms_found == rooms);
+  CHECK(doors_found == doors);
+}
+
+TEST_CASE("robot maps with furniture and noise: rooms still found (tolerance 10 %)") {
+  std::size_t rooms = 0, rooms_found = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const auto building = generate_building(BuildingParams{}, seed);
+    RobotMapParams rp;
+    rp.rotation_rad = 0.4 * seed;
+    rp.wall_noise_m = 0.03;
+    rp.max_clutter_per_room = 2;
+    rp.speckle_per_m2 = 0.02;
+    const auto robot = make_robot_map(building, rp, seed);
+    const AreaGraph graph = VoronoiSegmenter{}.segment(robot.grid);
+    check_graph_invariants(graph);
+    // Map each room's centre into the robot map: the area there must be mostly that room.
+    for (const auto& area : building.areas) {
+      if (area.corridor) continue;
+      ++rooms;
+      Point2 centre;
+      bg::centroid(area.polygon, centre);
+      const Eigen::Vector2d p = robot.T_dest_source.inverse() * to_vector(centre);
+      const Eigen::Vector2i cell = robot.grid.world_to_cell(p);
+      if (!robot.grid.contains(cell.x(), cell.y())) continue;
+      const int label = graph.labels[robot.grid.index(cell.x(), cell.y())];
+      if (label < 0) continue;
+      const double ratio = graph.areas[label].size_m2 / area.size_m2;
+      rooms_found += ratio > 0.6 && ratio < 1.25;
+    }
+  }
+  MESSAGE("rooms found in robot maps: " << rooms_found << "/" << rooms);
+  CHECK(rooms_found >= 0.9 * rooms);
+}
+
+TEST_CASE("segmentation is deterministic") {
+  const auto building = generate_building(BuildingParams{}, 11);
+  RobotMapParams rp;
+  rp.rotation_rad = 0.7;
+  rp.wall_noise_m = 0.03;
+  rp.max_clutter_per_room = 3;
+  const auto robot = make_robot_map(building, rp, 11);
+  const AreaGraph a = VoronoiSegmenter{}.segment(robot.grid);
+  const AreaGraph b = VoronoiSegmenter{}.segment(robot.grid);
+  CHECK(a.labels == b.labels);
+  REQUIRE(a.passages.size() == b.passages.size());
+  for (std::size_t i = 0; i < a.passages.size(); ++i) {
+    CHECK(a.passages[i].position == b.passages[i].position);
+    CHECK(a.passages[i].width_m == b.passages[i].width_m);
+  }
+}
+
+TEST_CASE("degenerate maps give an empty graph or one area, never a crash") {
+  const VoronoiSegmenter segmenter;
+  CHECK(segmenter.segment(OccupancyGrid(1, 1, 0.05, {}, CellState::free)).areas.empty());
+  CHECK(segmenter.segment(OccupancyGrid(1, 1, 0.05, {}, CellState::occupied)).areas.empty());
+  CHECK(segmenter.segment(OccupancyGrid(50, 40, 0.05, {}, CellState::occupied)).areas.empty());
+  CHECK(segmenter.segment(OccupancyGrid(50, 40, 0.05, {}, CellState::unknown)).areas.empty());
+  // All free: one area, the whole map.
+  const AreaGraph all_free = segmenter.segment(OccupancyGrid(60, 40, 0.05, {}, CellState::free));
+  REQUIRE(all_free.areas.size() == 1);
+  CHECK(all_free.areas[0].size_m2 == doctest::Approx(60 * 40 * 0.05 * 0.05));
+  CHECK(all_free.covered_fraction == doctest::Approx(1.0));
+  // Free space too thin to pass (one-cell corridors): no areas.
+  std::vector<std::string> rows(20, std::string(20, '#'));
+  for (int r = 2; r < 18; r += 2) rows[r].replace(1, 18, std::string(18, '.'));
+  CHECK(segmenter.segment(grid_from_text(rows, 0.05)).areas.empty());
+  // Bad parameters are named.
+  VoronoiSegmenter bad;
+  bad.params.rooms.door_width_m = -1.0;
+  CHECK_THROWS_WITH_AS(bad.segment(OccupancyGrid(10, 10, 0.05, {}, CellState::free)), doctest::Contains("door width"),
+                       parameter_error);
+}
+
+TEST_CASE("random maps never crash and always give valid polygons") {
+  detail::Random random(2024);
+  const VoronoiSegmenter segmenter;
+  for (int trial = 0; trial < 200; ++trial) {
+    const int w = random.integer(20, 90), h = random.integer(20, 90);
+    OccupancyGrid g(w, h, 0.05, {}, CellState::free);
+    for (int k = random.integer(0, 12); k > 0; --k) {  // random walls
+      const bool horizontal = random.chance(0.5);
+      const int at = random.integer(0, horizontal ? h - 1 : w - 1);
+      const int from = random.integer(0, horizontal ? w - 1 : h - 1), length = random.integer(1, 60);
+      for (int i = from; i < std::min(from + length, horizontal ? w : h); ++i)
+        g.set(horizontal ? i : at, horizontal ? at : i, CellState::occupied);
+    }
+    for (int k = random.integer(0, 30); k > 0; --k) {  // blobs and unknown patches
+      const int c = random.integer(0, w - 1), r = random.integer(0, h - 1), s = random.integer(0, 4);
+      const CellState state = random.chance(0.3) ? CellState::unknown : CellState::occupied;
+      for (int dr = 0; dr <= s; ++dr)
+        for (int dc = 0; dc <= s; ++dc)
+          if (g.contains(c + dc, r + dr)) g.set(c + dc, r + dr, state);
+    }
+    INFO("trial " << trial);
+    AreaGraph graph;
+    CHECK_NOTHROW(graph = segmenter.segment(g));
+    check_graph_invariants(graph);
+  }
+}
+
+TEST_CASE("room scores agree with the definition of segscore.py") {
+  // Rooms 0 and 1 of 300 cells. Area 0 covers room 0 and half of room 1; area 1 the other half
+  // of room 1 and 100 cells outside every room; area 2 (50 cells) is too small to count.
+  std::vector<int> rooms(900, -1), labels(900, -1);
+  for (int i = 0; i < 300; ++i) rooms[i] = 0;
+  for (int i = 300; i < 600; ++i) rooms[i] = 1;
+  for (int i = 0; i < 450; ++i) labels[i] = 0;
+  for (int i = 450; i < 700; ++i) labels[i] = 1;
+  for (int i = 700; i < 750; ++i) labels[i] = 2;
+  const SegmentationScore s = score_segmentation(labels, rooms);
+  CHECK(s.rooms == 2);
+  CHECK(s.areas == 2);
+  CHECK(s.recall == doctest::Approx((1.0 + 0.5) / 2));
+  CHECK(s.precision == doctest::Approx((300.0 / 450 + 150.0 / 250) / 2));
+}
