@@ -65,6 +65,36 @@ TEST_CASE("generate writes a pair that info reads back") {
   CHECK(areamatch::detail::read_file_bytes(dir + "/pairs.json") == areamatch::detail::read_file_bytes(again + "/pairs.json"));
 }
 
+TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
+  const std::string dir = areamatch_test::temp_dir() + "/segment";
+  REQUIRE(run("generate " + dir + " --seed 5 --width 20 --height 14").status == 0);
+  const Run seg = run("segment " + dir + "/layout.yaml --png " + dir + "/seg.png --svg " + dir + "/seg.svg --labels " +
+                      dir + "/labels.png --json " + dir + "/graph.json --show-skeleton");
+  INFO(seg.out);
+  CHECK(seg.status == 0);
+  CHECK(seg.out.rfind("areas ", 0) == 0);
+  const auto labels = areamatch::read_image(dir + "/labels.png");
+  const auto layout = areamatch::load_map(dir + "/layout.yaml");
+  CHECK(labels.width == layout.width());
+  CHECK(labels.height == layout.height());
+  CHECK(labels.max_value == 65535);
+  const auto json = areamatch::detail::read_file_bytes(dir + "/graph.json");
+  const std::string text(json.begin(), json.end());
+  CHECK(text.find("\"areas\": [") != std::string::npos);
+  CHECK(text.find("\"passages\": [") != std::string::npos);
+  // Same input, same JSON.
+  REQUIRE(run("segment " + dir + "/layout.yaml --json " + dir + "/graph2.json").status == 0);
+  CHECK(areamatch::detail::read_file_bytes(dir + "/graph2.json") == json);
+
+  areamatch_test::write_bytes(dir + "/walls.pgm", std::string("P5 3 3 255\n") + std::string(9, '\0'));
+  const Run empty = run("segment " + dir + "/walls.pgm");
+  CHECK(empty.status == 1);
+  CHECK(empty.out.find("no areas") != std::string::npos);
+  const Run door = run("segment " + dir + "/layout.yaml --door-width -1");
+  CHECK(door.status == 2);
+  CHECK(door.out.find("--door-width must be positive") != std::string::npos);
+}
+
 TEST_CASE("bad input: exit status 2 and a message naming the problem") {
   const std::string dir = areamatch_test::temp_dir();
   auto expect = [](const std::string& arguments, const std::string& message) {

@@ -56,19 +56,6 @@ areamatch::LoadOptions load_options(const Args& args) {
   return options;
 }
 
-std::string json_string(const std::string& s) {
-  std::string out = "\"";
-  for (char c : s) {
-    if (c == '"' || c == '\\') out += '\\', out += c;
-    else if (static_cast<unsigned char>(c) < 0x20) {
-      char buffer[8];
-      std::snprintf(buffer, sizeof buffer, "\\u%04x", c);
-      out += buffer;
-    } else out += c;
-  }
-  return out + "\"";
-}
-
 // ---------------------------------------------------------------------------------------- info
 
 const char* kInfoHelp =
@@ -90,7 +77,7 @@ int run_info(const std::vector<std::string>& tokens) {
   const auto percent = [&](std::size_t n) { return format_fixed(100.0 * n / total, 2); };
   const auto& t = loaded.thresholds;
   if (args.flag("json")) {
-    std::cout << "{\"map\": " << json_string(args.positional()[0]) << ", \"image\": " << json_string(loaded.image_path)
+    std::cout << "{\"map\": " << areamatch::detail::json_quote(args.positional()[0]) << ", \"image\": " << areamatch::detail::json_quote(loaded.image_path)
               << ", \"width\": " << g.width() << ", \"height\": " << g.height()
               << ", \"resolution\": " << format_double(g.resolution()) << ", \"origin\": [" << format_double(g.origin().x)
               << ", " << format_double(g.origin().y) << ", " << format_double(g.origin().yaw) << "]"
