@@ -84,27 +84,44 @@ inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) 
   const auto cap = static_cast<std::uint8_t>(reach + 1);  // cap² ≥ threshold: "far enough"
   // Vertical distance to the nearest non-free cell in the same column, capped.
   std::vector<std::uint8_t> vertical(N);
-  for (int r = 0; r < H; ++r)
+  for (int c = 0; c < W; ++c) vertical[c] = space.free[c];
+  for (int r = 1; r < H; ++r) {
+    const std::uint8_t* above = &vertical[static_cast<std::size_t>(r - 1) * W];
+    const std::uint8_t* free = &space.free[static_cast<std::size_t>(r) * W];
+    std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
     for (int c = 0; c < W; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * W + c;
-      vertical[i] = !space.free[i] ? 0 : r == 0 ? 1 : static_cast<std::uint8_t>(std::min<int>(vertical[i - W] + 1, cap));
+      const std::uint8_t grown = above[c] < cap ? static_cast<std::uint8_t>(above[c] + 1) : cap;
+      row[c] = free[c] ? grown : 0;
     }
-  for (int r = H - 2; r >= 0; --r)
+  }
+  for (int r = H - 2; r >= 0; --r) {
+    const std::uint8_t* below = &vertical[static_cast<std::size_t>(r + 1) * W];
+    std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
     for (int c = 0; c < W; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * W + c;
-      vertical[i] = static_cast<std::uint8_t>(std::min<int>(vertical[i], vertical[i + W] + 1));
+      const std::uint8_t grown = below[c] < cap ? static_cast<std::uint8_t>(below[c] + 1) : cap;
+      row[c] = std::min(row[c], grown);
     }
+  }
+  // Core iff for every column offset dx within reach: vertical(c + dx) ≥ need[|dx|], the
+  // smallest vertical distance that keeps that column's nearest obstacle far enough. One pass
+  // of byte comparisons per offset, which the compiler vectorises.
+  std::vector<std::uint8_t> need(static_cast<std::size_t>(reach) + 1);
+  for (int dx = 0; dx <= reach; ++dx) {
+    const double rest = threshold - static_cast<double>(dx) * dx;
+    need[dx] = static_cast<std::uint8_t>(rest <= 0.0 ? 0 : std::min<int>(cap, static_cast<int>(std::ceil(std::sqrt(rest) - 1e-9))));
+  }
   for (int r = 0; r < H; ++r) {
     const std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    for (int c = 0; c < W; ++c) {
-      if (row[c] * row[c] < threshold) continue;
-      bool far = true;
-      for (int dx = 1; dx <= reach && far; ++dx) {
-        const double dx2 = static_cast<double>(dx) * dx;
-        const int left = c - dx >= 0 ? row[c - dx] : 0, right = c + dx < W ? row[c + dx] : 0;
-        far = dx2 + left * left >= threshold && dx2 + right * right >= threshold;
+    std::uint8_t* out = &core[static_cast<std::size_t>(r) * W];
+    for (int c = 0; c < W; ++c) out[c] = row[c] >= need[0];
+    for (int dx = 1; dx <= reach; ++dx) {
+      const std::uint8_t n = need[dx];
+      const int edge = std::min(dx, W);
+      if (n > 0) {  // beyond the mask counts as obstacle: cells that close to its edge fail
+        for (int c = 0; c < edge; ++c) out[c] = 0;
+        for (int c = std::max(W - dx, 0); c < W; ++c) out[c] = 0;
       }
-      core[static_cast<std::size_t>(r) * W + c] = far;
+      for (int c = dx; c < W - dx; ++c) out[c] &= static_cast<std::uint8_t>((row[c - dx] >= n) & (row[c + dx] >= n));
     }
   }
   return core;

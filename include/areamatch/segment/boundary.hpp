@@ -88,7 +88,10 @@ inline TracedRings trace_rings(const FreeSpace& space) {
   std::vector<std::uint8_t> visited(static_cast<std::size_t>(W) * H, 0);
   for (int r0 = 0; r0 < H; ++r0) {
     for (int c0 = 0; c0 < W; ++c0) {
-      if (!free_at(c0, r0)) continue;
+      const std::size_t i = static_cast<std::size_t>(r0) * W + c0;
+      if (!space.free[i]) continue;
+      // Free cells never lie on the mask's border, so the four neighbours are inside it.
+      if (space.free[i - 1] && space.free[i + 1] && space.free[i - W] && space.free[i + W]) continue;
       for (int k0 = 0; k0 < 4; ++k0) {
         if (!boundary_side(c0, r0, k0) || (visited[static_cast<std::size_t>(r0) * W + c0] >> k0 & 1)) continue;
         std::vector<LatticePoint> ring;
