@@ -71,11 +71,10 @@ void supercover_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Mark&& 
   }
 }
 
-/// Free cells farther than `distance` (in cells, centre to centre) from every non-free cell: the
-/// erosion of free space by a disc. Works on byte column distances and a short window per row,
-/// so it needs one byte per cell.
-inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) {
-  const int W = space.width, H = space.height;
+/// Cells of `mask` farther than `distance` (in cells, centre to centre) from every cell outside
+/// it: the erosion by a disc. Works on byte column distances and a short window per row, so it
+/// needs one byte per cell. Beyond the mask's edge counts as outside.
+inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mask, int W, int H, double distance) {
   const std::size_t N = static_cast<std::size_t>(W) * H;
   std::vector<std::uint8_t> core(N, 0);
   const double threshold = distance * distance;
@@ -84,10 +83,10 @@ inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) 
   const auto cap = static_cast<std::uint8_t>(reach + 1);  // cap² ≥ threshold: "far enough"
   // Vertical distance to the nearest non-free cell in the same column, capped.
   std::vector<std::uint8_t> vertical(N);
-  for (int c = 0; c < W; ++c) vertical[c] = space.free[c];
+  for (int c = 0; c < W; ++c) vertical[c] = mask[c] ? 1 : 0;
   for (int r = 1; r < H; ++r) {
     const std::uint8_t* above = &vertical[static_cast<std::size_t>(r - 1) * W];
-    const std::uint8_t* free = &space.free[static_cast<std::size_t>(r) * W];
+    const std::uint8_t* free = &mask[static_cast<std::size_t>(r) * W];
     std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
     for (int c = 0; c < W; ++c) {
       const std::uint8_t grown = above[c] < cap ? static_cast<std::uint8_t>(above[c] + 1) : cap;
@@ -160,11 +159,28 @@ inline long long signed_area2(const std::vector<Eigen::Vector2i>& ring) {
   return sum;
 }
 
+inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) {
+  return erode_mask(space.free, space.width, space.height, distance);
+}
+
 inline Eigen::Vector2d lattice_to_world(const OccupancyGrid& grid, const Eigen::Vector2d& p) {
   return grid.pixel_to_world(p - Eigen::Vector2d(0.5, 0.5));
 }
 
 }  // namespace detail
+
+/// The opening of free space by a disc of `radius` cells: the cells some disc of that radius
+/// lying wholly in free space covers. Same frame as `space`.
+inline FreeSpace open_free_space(const FreeSpace& space, double radius) {
+  FreeSpace opened = space;
+  const auto core = detail::erode(space, radius);
+  std::vector<std::uint8_t> outside_core(core.size());
+  for (std::size_t i = 0; i < core.size(); ++i) outside_core[i] = !core[i];
+  // Dilation of the core = complement of the erosion of its complement.
+  const auto far_from_core = detail::erode_mask(outside_core, space.width, space.height, radius);
+  for (std::size_t i = 0; i < core.size(); ++i) opened.free[i] = space.free[i] && !far_from_core[i];
+  return opened;
+}
 
 /// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
 /// the free-cell count for `covered_fraction`.

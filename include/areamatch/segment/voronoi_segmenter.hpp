@@ -87,12 +87,17 @@ struct VoronoiSegmenter {
     const double res = grid.resolution();
     const auto t0 = clock::now();
     const FreeSpace space = binarize(grid, params.binarize);
+    // Optionally trace only the free space a disc of min_clearance can reach (see
+    // BoundaryParams::trace_passable_only); the areas still cover the whole free space.
+    const FreeSpace passable = params.boundary.trace_passable_only
+                                   ? open_free_space(space, params.skeleton.min_clearance_m / res + 0.5)
+                                   : space;
     const auto t1 = clock::now();
-    const BoundarySegments boundary = trace_boundary(space, res, params.boundary);
+    const BoundarySegments boundary = trace_boundary(passable, res, params.boundary);
     out.boundary_segments = boundary.segments.size();
     out.reverted_rings = boundary.reverted_rings;
     const auto t2 = clock::now();
-    out.skeleton = build_skeleton(space, boundary, res, skeleton_params);
+    out.skeleton = build_skeleton(passable, boundary, res, skeleton_params);
     const auto t3 = clock::now();
     out.rooms = detect_rooms(out.skeleton, res, params.rooms);
     const auto t4 = clock::now();
