@@ -1,5 +1,6 @@
 // The README demo: a synthetic building, a degraded and turned "robot map" of it, both saved as
-// ROS maps and read back, and a picture of the pair laid over each other by the ground truth.
+// ROS maps and read back, their Area Graphs, and a picture of the pair laid over each other by
+// the ground truth.
 // (Matching arrives with the matcher; then this demo matches the pair and reports its error.)
 //
 //   demo [OUTDIR]      (default: areamatch-demo)
@@ -37,6 +38,14 @@ int main(int argc, char** argv) {
     areamatch::write_text_file(out + "/overlay.svg",
                                areamatch::overlay_svg(building.layout, robot.grid, robot.T_dest_source));
 
+    // Area Graphs of both maps: rooms in colours, doors as lines with a dot sized by their width.
+    const areamatch::VoronoiSegmenter segmenter;
+    const auto layout_graph = segmenter.segment(building.layout);
+    const auto robot_graph = segmenter.segment(robot.grid);
+    areamatch::write_png(out + "/segmentation.png",
+                         areamatch::side_by_side(areamatch::render_area_graph(robot.grid, robot_graph),
+                                                 areamatch::render_area_graph(building.layout, layout_graph)));
+
     const auto& T = robot.T_dest_source;
     std::printf("building: %zu areas, %zu doors, layout %dx%d cells at %.2f m\n", building.areas.size(),
                 building.doors.size(), building.layout.width(), building.layout.height(), building.layout.resolution());
@@ -44,9 +53,13 @@ int main(int argc, char** argv) {
                 robot.grid.resolution(), robot_params.rotation_rad * 180.0 / areamatch::pi);
     std::printf("ground truth robot -> layout: rotation %.2f deg, translation (%.3f, %.3f) m%s\n",
                 T.rotation * 180.0 / areamatch::pi, T.translation.x(), T.translation.y(), T.reflected ? ", mirrored" : "");
+    std::printf("area graphs: robot map %zu areas / %zu passages, layout %zu areas / %zu passages\n",
+                robot_graph.areas.size(), robot_graph.passages.size(), layout_graph.areas.size(),
+                layout_graph.passages.size());
     std::printf("save/load round trip: %s\n", round_trip ? "identical" : "DIFFERENT");
-    std::printf("pictures: %s/pair.png (the two maps), %s/overlay.png and overlay.svg (robot walls in red on the layout)\n",
-                out.c_str(), out.c_str());
+    std::printf("pictures in %s/: pair.png (the two maps), segmentation.png (their areas and doors),\n"
+                "  overlay.png and overlay.svg (robot walls in red on the layout, by the ground truth)\n",
+                out.c_str());
     return round_trip ? 0 : 1;
   } catch (const std::exception& e) {
     std::cerr << "demo: " << e.what() << "\n";
