@@ -187,6 +187,44 @@ TEST_CASE("robot maps with furniture and noise: rooms still found (tolerance 10 
   CHECK(rooms_found >= 0.9 * rooms);
 }
 
+TEST_CASE("with split_at_junctions, corridors are split where they meet, as in the paper") {
+  for (std::uint64_t seed : {2u, 3u}) {
+    BuildingParams params;
+    params.layout = CorridorLayout::t_shape;
+    params.width_m = 30;
+    params.height_m = 22;
+    const auto building = generate_building(params, seed);
+    VoronoiSegmenter segmenter;
+    segmenter.params.rooms.split_at_junctions = true;
+    const AreaGraph graph = segmenter.segment(building.layout);
+    check_graph_invariants(graph);
+    // The corridor system (ground-truth area 0) is now at least three areas, each a real share.
+    std::map<int, std::size_t> pieces;
+    std::size_t corridor_cells = 0;
+    for (std::size_t i = 0; i < building.labels.size(); ++i) {
+      if (building.labels[i] != 0) continue;
+      ++corridor_cells;
+      if (graph.labels[i] >= 0) ++pieces[graph.labels[i]];
+    }
+    int big_pieces = 0;
+    for (const auto& [area, cells] : pieces) big_pieces += cells >= 0.1 * corridor_cells;
+    CHECK(big_pieces >= 3);
+    // …joined by junction passages at one point.
+    std::vector<Eigen::Vector2d> junctions;
+    for (const auto& p : graph.passages)
+      if (p.kind == PassageKind::junction) junctions.push_back(p.position);
+    REQUIRE(junctions.size() >= 2);
+    for (const auto& j : junctions) CHECK((j - junctions.front()).norm() < 1e-9);
+    // Rooms are untouched: the same rooms are found as without splitting.
+    CHECK(score_segmentation(graph.labels, building.labels, 1).recall > 0.9);
+  }
+  // Off (the default), the corridor system stays one area.
+  BuildingParams params;
+  params.layout = CorridorLayout::t_shape;
+  const auto building = generate_building(params, 2);
+  for (const auto& p : VoronoiSegmenter{}.segment(building.layout).passages) CHECK(p.kind == PassageKind::door);
+}
+
 TEST_CASE("segmentation is deterministic") {
   const auto building = generate_building(BuildingParams{}, 11);
   RobotMapParams rp;

@@ -206,9 +206,9 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   std::vector<std::uint8_t> barrier(N, 0);
   const SampleGraph& g = rooms.graph;
   for (const auto& p : rooms.passages) {
-    const SkeletonSample& s = g.samples[p.sample];
-    const Eigen::Vector2d direction = (s.foot_b - s.foot_a).normalized();
-    detail::supercover_line(s.foot_a - direction, s.foot_b + direction, [&](int c, int r) {
+    // Doors are sealed one cell beyond both walls; junction spokes start at the junction.
+    const Eigen::Vector2d direction = (p.line_b - p.line_a).normalized();
+    detail::supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
       if (space.is_free(c, r)) barrier[static_cast<std::size_t>(r) * W + c] = 1;
     });
   }
@@ -508,12 +508,12 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     const SkeletonSample& s = g.samples[detected->sample];
     Passage passage;
     passage.id = static_cast<int>(graph.passages.size());
-    passage.kind = PassageKind::door;
+    passage.kind = detected->junction ? PassageKind::junction : PassageKind::door;
     passage.area_a = areas.first;
     passage.area_b = areas.second;
     passage.position = to_world(s.position);
-    const Eigen::Vector2d fa = to_world(s.foot_a), fb = to_world(s.foot_b);
-    passage.width_m = (fb - fa).norm();
+    const Eigen::Vector2d fa = to_world(detected->line_a), fb = to_world(detected->line_b);
+    passage.width_m = detected->junction ? 2.0 * s.clearance * res : (fb - fa).norm();
     passage.line = Segment2(to_point(fa), to_point(fb));
     graph.areas[areas.first].passages.push_back(passage.id);
     graph.areas[areas.second].passages.push_back(passage.id);
