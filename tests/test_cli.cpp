@@ -89,7 +89,7 @@ TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
   areamatch_test::write_bytes(dir + "/walls.pgm", std::string("P5 3 3 255\n") + std::string(9, '\0'));
   const Run empty = run("segment " + dir + "/walls.pgm");
   CHECK(empty.status == 1);
-  CHECK(empty.out.find("no areas") != std::string::npos);
+  CHECK(empty.out.find("no areas: the map has no free cells") != std::string::npos);
   const Run door = run("segment " + dir + "/layout.yaml --door-width -1");
   CHECK(door.status == 2);
   CHECK(door.out.find("--door-width must be positive") != std::string::npos);

@@ -244,19 +244,26 @@ TEST_CASE("segmentation is deterministic") {
 
 TEST_CASE("degenerate maps give an empty graph or one area, never a crash") {
   const VoronoiSegmenter segmenter;
-  CHECK(segmenter.segment(OccupancyGrid(1, 1, 0.05, {}, CellState::free)).areas.empty());
+  const AreaGraph tiny = segmenter.segment(OccupancyGrid(1, 1, 0.05, {}, CellState::free));
+  CHECK(tiny.areas.empty());
+  CHECK(tiny.reason.find("only specks") != std::string::npos);  // one cell is below the crumb size
   CHECK(segmenter.segment(OccupancyGrid(1, 1, 0.05, {}, CellState::occupied)).areas.empty());
-  CHECK(segmenter.segment(OccupancyGrid(50, 40, 0.05, {}, CellState::occupied)).areas.empty());
+  const AreaGraph walls = segmenter.segment(OccupancyGrid(50, 40, 0.05, {}, CellState::occupied));
+  CHECK(walls.areas.empty());
+  CHECK(walls.reason == "the map has no free cells");
   CHECK(segmenter.segment(OccupancyGrid(50, 40, 0.05, {}, CellState::unknown)).areas.empty());
   // All free: one area, the whole map.
   const AreaGraph all_free = segmenter.segment(OccupancyGrid(60, 40, 0.05, {}, CellState::free));
   REQUIRE(all_free.areas.size() == 1);
+  CHECK(all_free.reason.empty());
   CHECK(all_free.areas[0].size_m2 == doctest::Approx(60 * 40 * 0.05 * 0.05));
   CHECK(all_free.covered_fraction == doctest::Approx(1.0));
   // Free space too thin to pass (one-cell corridors): no areas.
-  std::vector<std::string> rows(20, std::string(20, '#'));
-  for (int r = 2; r < 18; r += 2) rows[r].replace(1, 18, std::string(18, '.'));
-  CHECK(segmenter.segment(grid_from_text(rows, 0.05)).areas.empty());
+  std::vector<std::string> rows(20, std::string(140, '#'));
+  for (int r = 2; r < 18; r += 2) rows[r].replace(1, 138, std::string(138, '.'));
+  const AreaGraph thin = segmenter.segment(grid_from_text(rows, 0.05));
+  CHECK(thin.areas.empty());
+  CHECK(thin.reason.find("wide enough to pass") != std::string::npos);
   // Bad parameters are named.
   VoronoiSegmenter bad;
   bad.params.rooms.door_width_m = -1.0;

@@ -260,9 +260,7 @@ int run_segment(const std::vector<std::string>& tokens) {
             << " [" << details.boundary_segments << " segments], skeleton " << format_fixed(1000.0 * t.skeleton_s, 1)
             << ", rooms " << format_fixed(1000.0 * t.rooms_s, 1) << ", areas " << format_fixed(1000.0 * t.areas_s, 1) << ")\n";
   if (graph.areas.empty()) {
-    std::cerr << "areamatch segment: " << args.positional()[0]
-              << ": no areas (no free space wide enough to pass: it needs free regions at least "
-              << format_double(2.0 * segmenter.params.skeleton.min_clearance_m) << " m across)\n";
+    std::cerr << "areamatch segment: " << args.positional()[0] << ": no areas: " << graph.reason << "\n";
     return 1;
   }
   return 0;

@@ -75,6 +75,9 @@ struct AreaGraph {
   /// Share of the map's free cells that belong to some area (laser streaks outside the
   /// building and crumbs too thin to pass are left out on purpose).
   double covered_fraction = 0.0;
+  /// Why there are no areas (empty when there are some): no free cells, free space too narrow
+  /// to pass, or every piece smaller than the minimum area.
+  std::string reason;
 
   /// Neighbouring areas (through any passage) of each area, ascending, without repeats.
   std::vector<std::vector<int>> adjacency() const {

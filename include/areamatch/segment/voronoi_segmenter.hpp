@@ -102,6 +102,20 @@ struct VoronoiSegmenter {
     out.rooms = detect_rooms(out.skeleton, res, params.rooms);
     const auto t4 = clock::now();
     out.graph = build_areas(grid, space, out.rooms, area_params);
+    if (out.graph.areas.empty()) {
+      if (grid.count().free == 0 && !params.binarize.unknown_is_free) {
+        out.graph.reason = "the map has no free cells";
+      } else if (space.count() == 0) {
+        out.graph.reason = "its free cells form only specks smaller than " +
+                           std::to_string(params.binarize.min_free_area_m2) + " m^2";
+      } else if (out.rooms.graph.samples.empty()) {
+        out.graph.reason = "no free space is wide enough to pass (it needs places at least " +
+                           std::to_string(2.0 * params.skeleton.min_clearance_m) + " m across)";
+      } else {
+        out.graph.reason = "every free region is smaller than the minimum area of " +
+                           std::to_string(params.areas.min_area_m2) + " m^2";
+      }
+    }
     const auto t5 = clock::now();
     out.timings = {seconds(t0, t1), seconds(t1, t2), seconds(t2, t3), seconds(t3, t4), seconds(t4, t5), seconds(t0, t5)};
     return out;
