@@ -28,6 +28,8 @@
 #include <map>
 #include <numeric>
 #include <queue>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
@@ -38,15 +40,21 @@ struct AreaParams {
   double min_area_m2 = 1.0;
   /// How far labelling continues beyond the space the skeleton reaches.
   double fringe_m = 0.5;
-  /// Must equal the skeleton's `min_clearance_m`: the radius of the opening.
+  /// The skeleton's `min_clearance_m` (the segmenter keeps them equal): labelling first grows
+  /// over free cells at least this far from every wall, where the skeleton lives.
   double min_clearance_m = 0.25;
   /// An area whose hull diameter exceeds this many times its widest free disc's diameter is a
   /// corridor.
   double corridor_elongation = 3.5;
 
   void validate() const {
-    for (double v : {min_area_m2, fringe_m, min_clearance_m, corridor_elongation}) {
-      if (!(std::isfinite(v) && v >= 0.0)) throw parameter_error("AreaParams: values must be >= 0 and finite");
+    const std::pair<double, const char*> values[] = {
+        {min_area_m2, "min_area_m2"}, {fringe_m, "fringe_m"}, {min_clearance_m, "min_clearance_m"},
+        {corridor_elongation, "corridor_elongation"}};
+    for (const auto& [v, name] : values) {
+      if (!(std::isfinite(v) && v >= 0.0)) {
+        throw parameter_error(std::string("AreaParams::") + name + " must be >= 0 and finite, got " + std::to_string(v));
+      }
     }
   }
 };
@@ -230,13 +238,13 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     queue.push_back(static_cast<std::uint32_t>(i));
   }
   // The mask's border is obstacle, so a free cell's four neighbours are always inside it.
-  const std::ptrdiff_t step[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+  const std::ptrdiff_t neighbour_offset[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
   // Breadth-first growth; into_fringe grows one step (one ring of cells) per call.
   auto grow = [&](std::vector<std::uint32_t>& frontier, bool into_fringe) {
     std::vector<std::uint32_t> next;
     for (std::size_t head = 0; head < frontier.size(); ++head) {
       const std::size_t i = frontier[head];
-      for (std::ptrdiff_t d : step) {
+      for (std::ptrdiff_t d : neighbour_offset) {
         const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
         if (label[j] >= 0 || barrier[j] || !(into_fringe ? space.free[j] : core[j])) continue;
         label[j] = label[i];
@@ -250,7 +258,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   // The fringe starts from labelled cells next to unlabelled free space.
   for (std::size_t i = 0; i < N; ++i) {
     if (label[i] < 0) continue;
-    for (std::ptrdiff_t d : step) {
+    for (std::ptrdiff_t d : neighbour_offset) {
       const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
       if (label[j] < 0 && space.free[j] && !barrier[j]) {
         queue.push_back(static_cast<std::uint32_t>(i));
@@ -259,11 +267,11 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     }
   }
   const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
-  for (int step = 0; step < fringe_steps && !queue.empty(); ++step) grow(queue, true);
+  for (int ring = 0; ring < fringe_steps && !queue.empty(); ++ring) grow(queue, true);
   // Barrier cells join the area most of their neighbours belong to.
   auto majority_of_neighbours = [&](std::size_t i) {
     int candidates[4], votes[4], count = 0;
-    for (std::ptrdiff_t d : step) {
+    for (std::ptrdiff_t d : neighbour_offset) {
       const int l = label[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d)];
       if (l < 0) continue;
       int k = 0;

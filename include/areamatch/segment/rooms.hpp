@@ -21,6 +21,8 @@
 #include <algorithm>
 #include <cmath>
 #include <numeric>
+#include <string>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
@@ -47,8 +49,14 @@ struct RoomParams {
     if (!(std::isfinite(door_width_m) && door_width_m > 0.0)) {
       throw parameter_error("door width must be a positive number of metres, got " + std::to_string(door_width_m));
     }
-    for (double v : {room_margin_m, narrow_corridor_length_m, door_search_m, junction_arm_length_m}) {
-      if (!(std::isfinite(v) && v >= 0.0)) throw parameter_error("RoomParams: lengths must be >= 0");
+    const std::pair<double, const char*> lengths[] = {{room_margin_m, "room_margin_m"},
+                                                       {narrow_corridor_length_m, "narrow_corridor_length_m"},
+                                                       {door_search_m, "door_search_m"},
+                                                       {junction_arm_length_m, "junction_arm_length_m"}};
+    for (const auto& [v, name] : lengths) {
+      if (!(std::isfinite(v) && v >= 0.0)) {
+        throw parameter_error(std::string("RoomParams::") + name + " must be >= 0 and finite, got " + std::to_string(v));
+      }
     }
   }
 };
