@@ -9,6 +9,7 @@
 ///            │    └─ format_error        a file is readable but its content is invalid
 ///            └─ areamatch::parameter_error  a parameter or argument is out of its domain
 
+#include <cmath>
 #include <stdexcept>
 #include <string>
 
@@ -40,4 +41,21 @@ class parameter_error : public error {
   using error::error;
 };
 
+namespace detail {
+
+/// Throws `parameter_error` "NAME must be positive and finite, got VALUE" unless value > 0.
+inline void require_positive(double value, const std::string& name) {
+  if (!(std::isfinite(value) && value > 0.0)) {
+    throw parameter_error(name + " must be positive and finite, got " + std::to_string(value));
+  }
+}
+
+/// Throws `parameter_error` "NAME must be >= 0 and finite, got VALUE" unless value ≥ 0.
+inline void require_non_negative(double value, const std::string& name) {
+  if (!(std::isfinite(value) && value >= 0.0)) {
+    throw parameter_error(name + " must be >= 0 and finite, got " + std::to_string(value));
+  }
+}
+
+}  // namespace detail
 }  // namespace areamatch

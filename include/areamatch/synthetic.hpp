@@ -121,12 +121,7 @@ struct RobotMap {
 // ------------------------------------------------------------------------------------------------
 
 inline void BuildingParams::validate() const {
-  auto positive = [](double v, const char* name) {
-    if (!(std::isfinite(v) && v > 0.0)) {
-      throw parameter_error(std::string("BuildingParams::") + name + " must be positive and finite, got " +
-                            std::to_string(v));
-    }
-  };
+  auto positive = [](double v, const char* name) { detail::require_positive(v, std::string("BuildingParams::") + name); };
   positive(width_m, "width_m");
   positive(height_m, "height_m");
   positive(corridor_width_m, "corridor_width_m");
@@ -139,7 +134,7 @@ inline void BuildingParams::validate() const {
   if (max_room_width_m < min_room_width_m || max_room_depth_m < min_room_depth_m) {
     throw parameter_error("BuildingParams: max room width/depth must not be below the min");
   }
-  if (!(margin_m >= 0.0) || !std::isfinite(margin_m)) throw parameter_error("BuildingParams::margin_m must be >= 0");
+  detail::require_non_negative(margin_m, "BuildingParams::margin_m");
   if (wall_thickness_m < resolution) {
     throw parameter_error("BuildingParams::wall_thickness_m must be at least one cell (" +
                           std::to_string(resolution) + " m) or walls would have holes");
@@ -159,11 +154,7 @@ inline void RobotMapParams::validate() const {
   if (!std::isfinite(rotation_rad) || !translation_m.allFinite()) {
     throw parameter_error("RobotMapParams: rotation and translation must be finite");
   }
-  auto non_negative = [](double v, const char* name) {
-    if (!(std::isfinite(v) && v >= 0.0)) {
-      throw parameter_error(std::string("RobotMapParams::") + name + " must be >= 0 and finite");
-    }
-  };
+  auto non_negative = [](double v, const char* name) { detail::require_non_negative(v, std::string("RobotMapParams::") + name); };
   non_negative(wall_noise_m, "wall_noise_m");
   non_negative(wall_bend_m, "wall_bend_m");
   non_negative(speckle_per_m2, "speckle_per_m2");

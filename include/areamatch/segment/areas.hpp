@@ -48,14 +48,10 @@ struct AreaParams {
   double corridor_elongation = 3.5;
 
   void validate() const {
-    const std::pair<double, const char*> values[] = {
-        {min_area_m2, "min_area_m2"}, {fringe_m, "fringe_m"}, {min_clearance_m, "min_clearance_m"},
-        {corridor_elongation, "corridor_elongation"}};
-    for (const auto& [v, name] : values) {
-      if (!(std::isfinite(v) && v >= 0.0)) {
-        throw parameter_error(std::string("AreaParams::") + name + " must be >= 0 and finite, got " + std::to_string(v));
-      }
-    }
+    detail::require_non_negative(min_area_m2, "AreaParams::min_area_m2");
+    detail::require_non_negative(fringe_m, "AreaParams::fringe_m");
+    detail::require_non_negative(min_clearance_m, "AreaParams::min_clearance_m");
+    detail::require_non_negative(corridor_elongation, "AreaParams::corridor_elongation");
   }
 };
 

@@ -24,12 +24,8 @@ struct BinarizeParams {
   double min_free_area_m2 = 0.25;
 
   void validate() const {
-    if (!(std::isfinite(max_speckle_area_m2) && max_speckle_area_m2 >= 0.0)) {
-      throw parameter_error("BinarizeParams::max_speckle_area_m2 must be >= 0, got " + std::to_string(max_speckle_area_m2));
-    }
-    if (!(std::isfinite(min_free_area_m2) && min_free_area_m2 >= 0.0)) {
-      throw parameter_error("BinarizeParams::min_free_area_m2 must be >= 0, got " + std::to_string(min_free_area_m2));
-    }
+    detail::require_non_negative(max_speckle_area_m2, "BinarizeParams::max_speckle_area_m2");
+    detail::require_non_negative(min_free_area_m2, "BinarizeParams::min_free_area_m2");
   }
 };
 

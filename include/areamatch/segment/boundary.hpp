@@ -52,11 +52,7 @@ struct BoundaryParams {
   /// 0.461 on shared/pairs.json), so it is off by default.
   bool trace_passable_only = false;
 
-  void validate() const {
-    if (!(std::isfinite(simplify_tolerance_m) && simplify_tolerance_m >= 0.0)) {
-      throw parameter_error("BoundaryParams::simplify_tolerance_m must be >= 0");
-    }
-  }
+  void validate() const { detail::require_non_negative(simplify_tolerance_m, "BoundaryParams::simplify_tolerance_m"); }
 };
 
 /// The obstacle boundary as lattice segments, valid Boost.Polygon Voronoi input.

@@ -49,15 +49,10 @@ struct RoomParams {
     if (!(std::isfinite(door_width_m) && door_width_m > 0.0)) {
       throw parameter_error("door width must be a positive number of metres, got " + std::to_string(door_width_m));
     }
-    const std::pair<double, const char*> lengths[] = {{room_margin_m, "room_margin_m"},
-                                                       {narrow_corridor_length_m, "narrow_corridor_length_m"},
-                                                       {door_search_m, "door_search_m"},
-                                                       {junction_arm_length_m, "junction_arm_length_m"}};
-    for (const auto& [v, name] : lengths) {
-      if (!(std::isfinite(v) && v >= 0.0)) {
-        throw parameter_error(std::string("RoomParams::") + name + " must be >= 0 and finite, got " + std::to_string(v));
-      }
-    }
+    detail::require_non_negative(room_margin_m, "RoomParams::room_margin_m");
+    detail::require_non_negative(narrow_corridor_length_m, "RoomParams::narrow_corridor_length_m");
+    detail::require_non_negative(door_search_m, "RoomParams::door_search_m");
+    detail::require_non_negative(junction_arm_length_m, "RoomParams::junction_arm_length_m");
   }
 };
 

@@ -79,15 +79,10 @@ struct SkeletonParams {
   double keep_clearance_m = 0.625;
 
   void validate() const {
-    auto check = [](double v, const char* name, bool positive) {
-      if (!std::isfinite(v) || v < 0.0 || (positive && v == 0.0)) {
-        throw parameter_error(std::string("SkeletonParams::") + name + " must be " + (positive ? "> 0" : ">= 0"));
-      }
-    };
-    check(min_clearance_m, "min_clearance_m", false);
-    check(sample_step_m, "sample_step_m", true);
-    check(spur_length_m, "spur_length_m", false);
-    check(keep_clearance_m, "keep_clearance_m", false);
+    detail::require_non_negative(min_clearance_m, "SkeletonParams::min_clearance_m");
+    detail::require_positive(sample_step_m, "SkeletonParams::sample_step_m");
+    detail::require_non_negative(spur_length_m, "SkeletonParams::spur_length_m");
+    detail::require_non_negative(keep_clearance_m, "SkeletonParams::keep_clearance_m");
   }
 };
 
