@@ -298,6 +298,34 @@ TEST_CASE("random maps never crash and always give valid polygons") {
   }
 }
 
+TEST_CASE("cross-modal consistency: a robot map and its layout segment alike") {
+  // Identical label images under the identity transform agree perfectly; shifted far, not at all.
+  std::vector<int> labels(100 * 40, -1);
+  for (int r = 0; r < 40; ++r)
+    for (int c = 0; c < 100; ++c) labels[static_cast<std::size_t>(r) * 100 + c] = c / 25;  // four 25 × 40 areas
+  PixelTransform identity;
+  identity << 1, 0, 0, 0, 1, 0;
+  CHECK(segmentation_consistency(labels, 100, 40, labels, 100, 40, identity) == doctest::Approx(1.0));
+  PixelTransform shifted = identity;
+  shifted(0, 2) = 13.0;  // more than half an area's width: IoU of the best match < 0.5
+  CHECK(segmentation_consistency(labels, 100, 40, labels, 100, 40, shifted) == doctest::Approx(0.0));
+
+  // A turned, noisy, furnished robot map and its layout, through the generator's ground truth.
+  const auto building = generate_building(BuildingParams{}, 6);
+  RobotMapParams rp;
+  rp.rotation_rad = 2.1;
+  rp.resolution = 0.04;
+  rp.wall_noise_m = 0.03;
+  rp.max_clutter_per_room = 2;
+  const auto robot = make_robot_map(building, rp, 6);
+  const AreaGraph source = VoronoiSegmenter{}.segment(robot.grid);
+  const AreaGraph dest = VoronoiSegmenter{}.segment(building.layout);
+  const double share = segmentation_consistency(source.labels, robot.grid.width(), robot.grid.height(), dest.labels,
+                                                building.layout.width(), building.layout.height(), robot.pixel_transform);
+  MESSAGE("synthetic robot map vs layout consistency: " << share);
+  CHECK(share >= 0.9);
+}
+
 TEST_CASE("room scores agree with the definition of segscore.py") {
   // Rooms 0 and 1 of 300 cells. Area 0 covers room 0 and half of room 1; area 1 the other half
   // of room 1 and 100 cells outside every room; area 2 (50 cells) is too small to count.

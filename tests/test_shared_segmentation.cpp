@@ -12,6 +12,7 @@
 #include <dirent.h>
 
 #include <algorithm>
+#include <map>
 #include <string>
 #include <vector>
 
@@ -46,6 +47,35 @@ TEST_CASE("every shared map segments into valid areas") {
       std::string reason;
       CHECK_MESSAGE(bg::is_valid(area.polygon, reason), reason);
     }
+  }
+}
+
+TEST_CASE("cross-modal consistency over the pairs of pairs.json") {
+  // consistency.py's measure. The targets: furnished→layout ≥ 0.90 (asserted) and
+  // SLAM→layout ≥ 0.70 (not met yet: printed, see docs/segmentation.md).
+  const std::string shared = areamatch_test::shared_dir();
+  if (shared.empty()) return;
+  const YAML::Node manifest = YAML::LoadFile(shared + "/pairs.json");  // JSON is YAML
+  const VoronoiSegmenter default_segmenter;
+  std::map<std::string, std::vector<double>> by_kind;
+  for (const auto& pair : manifest["pairs"]) {
+    VoronoiSegmenter segmenter = default_segmenter;
+    if (pair["door_width_m"]) segmenter.params.with_door_width(pair["door_width_m"].as<double>());
+    const OccupancyGrid source = load_map(shared + "/" + pair["source"].as<std::string>());
+    const OccupancyGrid dest = load_map(shared + "/" + pair["destination"].as<std::string>());
+    PixelTransform transform;
+    for (int i = 0; i < 2; ++i)
+      for (int j = 0; j < 3; ++j) transform(i, j) = pair["ground_truth"]["pixel_transform"][i][j].as<double>();
+    const double share = segmentation_consistency(segmenter.segment(source).labels, source.width(), source.height(),
+                                                  segmenter.segment(dest).labels, dest.width(), dest.height(), transform);
+    MESSAGE(pair["name"].as<std::string>() << " (" << pair["kind"].as<std::string>() << "): " << share);
+    by_kind[pair["kind"].as<std::string>()].push_back(share);
+  }
+  for (const auto& [kind, values] : by_kind) {
+    double mean = 0.0;
+    for (double v : values) mean += v / values.size();
+    MESSAGE(kind << ": mean consistency " << mean << " over " << values.size() << " pairs");
+    if (kind == "furnished_to_layout") CHECK(mean >= 0.90);
   }
 }
 

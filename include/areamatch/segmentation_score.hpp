@@ -5,12 +5,16 @@
 /// - recall: per ground-truth room, the largest share of it covered by one area, averaged;
 /// - precision: per area, the largest share of it inside one ground-truth room, averaged.
 /// Rooms and areas smaller than `min_cells` are ignored (200 cells = 0.5 m² at 0.05 m).
+/// `segmentation_consistency` compares two segmentations of one building across maps.
 
 #include "detail/run_components.hpp"
 #include "image.hpp"
+#include "transform.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
+#include <limits>
 #include <map>
 #include <vector>
 
@@ -72,6 +76,47 @@ inline SegmentationScore score_segmentation(const std::vector<int>& labels, cons
   score.recall = score.rooms ? recall / score.rooms : 0.0;
   score.precision = score.areas ? precision / score.areas : 0.0;
   return score;
+}
+
+/// Cross-modal consistency of two segmentations of one building (`shared/tools/consistency.py`):
+/// the share of destination areas of at least `min_cells` cells whose best source area, mapped
+/// into the destination by `pixel_transform` (source pixel → destination pixel, nearest
+/// neighbour), overlaps it with IoU ≥ 0.5. NaN when the destination has no such area.
+inline double segmentation_consistency(const std::vector<int>& source_labels, int source_width, int source_height,
+                                       const std::vector<int>& dest_labels, int dest_width, int dest_height,
+                                       const PixelTransform& pixel_transform, std::size_t min_cells = 200) {
+  // The source labels seen from every destination pixel.
+  Eigen::Affine2d forward = Eigen::Affine2d::Identity();
+  forward.matrix().topRows<2>() = pixel_transform;
+  const Eigen::Affine2d backward = forward.inverse();
+  std::vector<int> warped(dest_labels.size(), -1);
+  for (int r = 0; r < dest_height; ++r)
+    for (int c = 0; c < dest_width; ++c) {
+      const Eigen::Vector2d p = backward * Eigen::Vector2d(c, r);
+      const int sc = static_cast<int>(std::lround(p.x())), sr = static_cast<int>(std::lround(p.y()));
+      if (sc >= 0 && sr >= 0 && sc < source_width && sr < source_height)
+        warped[static_cast<std::size_t>(r) * dest_width + c] = source_labels[static_cast<std::size_t>(sr) * source_width + sc];
+    }
+  std::map<int, std::size_t> warped_size, dest_size;
+  std::map<std::pair<int, int>, std::size_t> overlap;  // (dest area, source area) → cells
+  for (std::size_t i = 0; i < dest_labels.size(); ++i) {
+    if (warped[i] >= 0) ++warped_size[warped[i]];
+    if (dest_labels[i] < 0) continue;
+    ++dest_size[dest_labels[i]];
+    if (warped[i] >= 0) ++overlap[{dest_labels[i], warped[i]}];
+  }
+  std::map<int, double> best_iou;
+  for (const auto& [key, count] : overlap) {
+    const double iou = static_cast<double>(count) / (dest_size[key.first] + warped_size[key.second] - count);
+    best_iou[key.first] = std::max(best_iou[key.first], iou);
+  }
+  std::size_t counted = 0, consistent = 0;
+  for (const auto& [area, size] : dest_size) {
+    if (size < min_cells) continue;
+    ++counted;
+    consistent += best_iou[area] >= 0.5;
+  }
+  return counted ? static_cast<double>(consistent) / counted : std::numeric_limits<double>::quiet_NaN();
 }
 
 }  // namespace areamatch
