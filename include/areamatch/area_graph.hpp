@@ -19,7 +19,7 @@ namespace areamatch {
 enum class AreaKind : std::uint8_t {
   room,      ///< compact
   corridor,  ///< long and narrow: its hull diameter is over `corridor_elongation` × its width
-  other      ///< none of the above (e.g. a narrow corridor piece that is short)
+  other      ///< for custom segmenters; VoronoiSegmenter assigns only room and corridor
 };
 
 inline const char* to_string(AreaKind kind) {
