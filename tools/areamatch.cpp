@@ -2,6 +2,7 @@
 //
 //   areamatch info MAP            size, resolution, origin and cell fractions of a map
 //   areamatch segment MAP         the map's Area Graph, with pictures, labels and JSON
+//   areamatch match SOURCE DEST   the transform between two maps, with a picture and JSON
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
 //
 // Exit status: 0 success, 1 no acceptable result (matching), 2 bad input or usage.
@@ -11,6 +12,7 @@
 #include <areamatch/detail/format.hpp>
 #include <areamatch/io.hpp>
 
+#include <chrono>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -266,6 +268,109 @@ int run_segment(const std::vector<std::string>& tokens) {
   return 0;
 }
 
+// --------------------------------------------------------------------------------------- match
+
+const char* kMatchHelp =
+    "usage: areamatch match SOURCE DEST [options]\n"
+    "Finds the transform that lays map SOURCE onto map DEST (both ROS YAML, PNG or PGM).\n"
+    "Exit status: 0 matched, 1 no acceptable match (with the reason), 2 bad input or usage.\n"
+    "Options:\n"
+    "  --source-resolution R   metres per pixel of SOURCE (default: its YAML, else 0.05)\n"
+    "  --dest-resolution R     metres per pixel of DEST (default: its YAML, else 0.05)\n"
+    "  --door-width M          door width for both maps, metres (default 1.25)\n"
+    "  --source-door-width M   door width of SOURCE only (with --dest-door-width; not with --door-width)\n"
+    "  --dest-door-width M     door width of DEST only\n"
+    "  --allow-reflection      also try the mirror image of SOURCE\n"
+    "  --paper                 the paper's matching as written (k = 3, largest angular cluster)\n"
+    "  --k N                   mutual nearest neighbours per area (default 10; paper 3)\n"
+    "  --min-score S           reject when the best whole-map IoU is below S (default 0.25)\n"
+    "  --json                  print exactly one JSON object on stdout\n"
+    "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
+    "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n";
+
+int run_match(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"allow-reflection", "paper", "json", "help"},
+                  {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
+                   "min-score", "png", "svg"});
+  if (args.flag("help")) {
+    std::cout << kMatchHelp;
+    return 0;
+  }
+  args.expect_positional(2, "SOURCE DEST");
+  const bool shared_door = args.text("door-width").has_value();
+  if (shared_door && (args.text("source-door-width") || args.text("dest-door-width"))) {
+    throw UsageError("give either --door-width or --source-door-width/--dest-door-width, not both");
+  }
+  areamatch::LoadOptions source_options, dest_options;
+  source_options.resolution = args.number("source-resolution", /*positive=*/true);
+  dest_options.resolution = args.number("dest-resolution", /*positive=*/true);
+  const auto door = args.number("door-width", true);
+  const auto source_door = door ? door : args.number("source-door-width", true);
+  const auto dest_door = door ? door : args.number("dest-door-width", true);
+  const auto k = args.integer("k", 1, 1000);
+  const auto min_score = args.number("min-score", false, true);
+
+  const auto start = std::chrono::steady_clock::now();
+  const auto source = areamatch::load_map(args.positional()[0], source_options);
+  const auto dest = areamatch::load_map(args.positional()[1], dest_options);
+  areamatch::VoronoiSegmenter source_segmenter, dest_segmenter;
+  if (source_door) source_segmenter.params.with_door_width(*source_door);
+  if (dest_door) dest_segmenter.params.with_door_width(*dest_door);
+  const auto segment_start = std::chrono::steady_clock::now();
+  const auto source_graph = source_segmenter.segment(source);
+  const auto dest_start = std::chrono::steady_clock::now();
+  const auto dest_graph = dest_segmenter.segment(dest);
+  const auto match_start = std::chrono::steady_clock::now();
+
+  auto configure = [&](areamatch::MatcherParams& p) {
+    p.allow_reflection = args.flag("allow-reflection");
+    if (k) p.k = static_cast<std::size_t>(*k);
+    if (min_score) p.min_score = *min_score;
+  };
+  areamatch::MatchResult result;
+  if (args.flag("paper")) {
+    areamatch::PaperMatcher matcher;
+    configure(matcher.params);
+    result = matcher.match(source, source_graph, dest, dest_graph);
+  } else {
+    areamatch::Matcher<> matcher;
+    configure(matcher.params);
+    result = matcher.match(source, source_graph, dest, dest_graph);
+  }
+  using seconds = std::chrono::duration<double>;
+  const auto end = std::chrono::steady_clock::now();
+  result.timings.segment_source_s = seconds(dest_start - segment_start).count();
+  result.timings.segment_dest_s = seconds(match_start - dest_start).count();
+  result.timings.match_s = seconds(end - match_start).count();
+  result.timings.total_s = seconds(end - start).count();
+
+  if (const auto png = args.text("png")) {
+    areamatch::write_png(*png, areamatch::side_by_side(areamatch::render_match_source(source, source_graph, result),
+                                                       areamatch::render_match_overlay(source, dest, dest_graph, result)));
+  }
+  if (const auto svg = args.text("svg")) {
+    areamatch::write_text_file(*svg, areamatch::overlay_svg(areamatch::render_match_overlay(source, dest, dest_graph, result),
+                                                            dest, source, result.T_dest_source));
+  }
+  if (args.flag("json")) {
+    std::cout << areamatch::match_result_json(result) << "\n";
+  } else {
+    const auto& T = result.T_dest_source;
+    std::cout << (result.ok ? "matched" : "no match") << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2)
+              << " deg, translation (" << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3)
+              << ") m" << (T.reflected ? ", reflected" : "") << ", score " << format_fixed(result.score, 3)
+              << ", confidence " << format_fixed(result.confidence, 3) << ", " << result.matched_areas.size()
+              << " matched areas (" << result.statistics.source_areas << " / " << result.statistics.dest_areas
+              << " areas), " << format_fixed(1000.0 * result.timings.total_s, 1) << " ms (match "
+              << format_fixed(1000.0 * result.timings.match_s, 1) << " ms)\n";
+  }
+  if (!result.ok) {
+    std::cerr << "areamatch match: no acceptable match: " << result.reason << "\n";
+    return 1;
+  }
+  return 0;
+}
+
 // ---------------------------------------------------------------------------------------- main
 
 const char* kMainHelp =
@@ -274,6 +379,7 @@ const char* kMainHelp =
     "Commands:\n"
     "  info MAP          size, resolution, origin and free/occupied/unknown fractions of a map\n"
     "  segment MAP       split a map into areas and passages (its Area Graph), with pictures\n"
+    "  match SOURCE DEST find the transform between two maps of one building\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
     "  version           print the version\n"
     "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n";
@@ -287,7 +393,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}};
+      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -63,6 +63,9 @@ struct GridInfo {
   int height = 0;
   double resolution = 0.05;
   Pose2 origin{};
+
+  /// Continuous pixel coordinates (col, row) → world metres, as `OccupancyGrid::world_from_pixel`.
+  Eigen::Affine2d world_from_pixel() const { return detail::world_from_pixel(height, resolution, origin); }
 };
 
 /// Areas and passages of one map, with a label per cell.

@@ -8,6 +8,7 @@
 #include "geometry.hpp"
 #include "grid.hpp"
 #include "image.hpp"
+#include "matcher.hpp"
 #include "render.hpp"
 #include "segment/voronoi_segmenter.hpp"
 #include "segmenter.hpp"

@@ -42,6 +42,19 @@ struct Pose2 {
   }
 };
 
+namespace detail {
+/// Continuous pixel coordinates (col, row; pixel centres at integers, rows downwards) → world
+/// metres, for a grid of `height` rows with the ROS origin convention (see the file comment).
+inline Eigen::Affine2d world_from_pixel(int height, double resolution, const Pose2& origin) {
+  const Eigen::Rotation2Dd rotation(origin.yaw);
+  Eigen::Affine2d transform = Eigen::Affine2d::Identity();
+  transform.linear() = rotation.toRotationMatrix() * Eigen::Vector2d(resolution, -resolution).asDiagonal();
+  transform.translation() = Eigen::Vector2d(origin.x, origin.y) +
+                            rotation * Eigen::Vector2d(0.5 * resolution, (height - 0.5) * resolution);
+  return transform;
+}
+}  // namespace detail
+
 /// Number of cells in each state.
 struct CellCounts {
   std::size_t free = 0;
@@ -120,17 +133,7 @@ class OccupancyGrid {
   }
 
   /// Affine map from continuous pixel coordinates (col, row) to world metres.
-  Eigen::Affine2d world_from_pixel() const {
-    const Eigen::Rotation2Dd rotation(origin_.yaw);
-    Eigen::Matrix2d linear = rotation.toRotationMatrix() * Eigen::Vector2d(resolution_, -resolution_).asDiagonal();
-    const Eigen::Vector2d offset =
-        Eigen::Vector2d(origin_.x, origin_.y) +
-        rotation * Eigen::Vector2d(0.5 * resolution_, (height_ - 0.5) * resolution_);
-    Eigen::Affine2d transform = Eigen::Affine2d::Identity();
-    transform.linear() = linear;
-    transform.translation() = offset;
-    return transform;
-  }
+  Eigen::Affine2d world_from_pixel() const { return detail::world_from_pixel(height_, resolution_, origin_); }
   /// Affine map from world metres to continuous pixel coordinates (col, row).
   Eigen::Affine2d pixel_from_world() const { return world_from_pixel().inverse(); }
 

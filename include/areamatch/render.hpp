@@ -6,6 +6,7 @@
 #include "area_graph.hpp"
 #include "grid.hpp"
 #include "image.hpp"
+#include "match/result.hpp"
 #include "segment/skeleton.hpp"
 #include "transform.hpp"
 
@@ -13,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <vector>
 
 namespace areamatch {
 
@@ -39,23 +41,38 @@ inline RgbImage render_grid(const OccupancyGrid& grid, const MapColors& colors =
   return image;
 }
 
-/// The destination map with the source map's occupied cells drawn over it after `T_dest_source`
-/// (world frames). Each destination pixel looks up the source cell under it, so the overlay has
-/// no holes whatever the scale.
-inline RgbImage render_overlay(const OccupancyGrid& dest, const OccupancyGrid& source,
-                               const Similarity2& T_dest_source, const MapColors& colors = {}) {
-  RgbImage image = render_grid(dest, colors);
+/// Whether a cell has a free 8-neighbour: the occupied cells worth drawing (walls, not the
+/// solid outside of a map).
+inline bool touches_free(const OccupancyGrid& grid, int col, int row) {
+  for (int dr = -1; dr <= 1; ++dr)
+    for (int dc = -1; dc <= 1; ++dc)
+      if (grid.contains(col + dc, row + dr) && grid.is_free(col + dc, row + dr)) return true;
+  return false;
+}
+
+/// Draws `source`'s walls (occupied cells next to free space) onto a picture of `dest` after
+/// `T_dest_source` (world frames). Each destination pixel looks up the source cell under it, so
+/// the overlay has no holes whatever the scale.
+inline void draw_source_walls(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source,
+                              const Similarity2& T_dest_source, const Rgb& color) {
   const Eigen::Affine2d source_from_dest =
       source.pixel_from_world() * T_dest_source.affine().inverse() * dest.world_from_pixel();
   for (int row = 0; row < dest.height(); ++row) {
     for (int col = 0; col < dest.width(); ++col) {
       const Eigen::Vector2d p = source_from_dest * Eigen::Vector2d(col, row);
       const int sc = static_cast<int>(std::floor(p.x() + 0.5)), sr = static_cast<int>(std::floor(p.y() + 0.5));
-      if (source.contains(sc, sr) && source.at(sc, sr) == CellState::occupied) {
-        image.set(col, row, colors.overlay[0], colors.overlay[1], colors.overlay[2]);
+      if (source.contains(sc, sr) && source.at(sc, sr) == CellState::occupied && touches_free(source, sc, sr)) {
+        image.set(col, row, color[0], color[1], color[2]);
       }
     }
   }
+}
+
+/// The destination map with the source map's walls drawn over it after `T_dest_source`.
+inline RgbImage render_overlay(const OccupancyGrid& dest, const OccupancyGrid& source,
+                               const Similarity2& T_dest_source, const MapColors& colors = {}) {
+  RgbImage image = render_grid(dest, colors);
+  draw_source_walls(image, dest, source, T_dest_source, colors.overlay);
   return image;
 }
 
@@ -132,6 +149,42 @@ inline RgbImage render_area_graph(const OccupancyGrid& grid, const AreaGraph& gr
     draw_world_line(image, grid, to_vector(p.line.first), to_vector(p.line.second), passage_color);
     draw_world_dot(image, grid, p.position, std::max(1.5, 0.25 * p.width_m / grid.resolution()), passage_color);
   }
+  return image;
+}
+
+/// Tints the cells of the listed areas, each in the colour of its partner `colour_of[label]`
+/// (no tint where that is −1).
+inline void tint_areas(RgbImage& image, const AreaGraph& graph, const std::vector<int>& colour_of) {
+  for (std::size_t i = 0; i < graph.labels.size(); ++i) {
+    const int label = graph.labels[i];
+    if (label < 0 || colour_of[static_cast<std::size_t>(label)] < 0) continue;
+    const Rgb c = area_color(colour_of[static_cast<std::size_t>(label)]);
+    image.set(static_cast<int>(i % static_cast<std::size_t>(image.width)),
+              static_cast<int>(i / static_cast<std::size_t>(image.width)), c[0], c[1], c[2]);
+  }
+}
+
+/// A match at a glance: the destination map with its matched areas tinted and the source map's
+/// walls laid over it by the result's transform (in `colors.overlay`); the matched source areas
+/// are tinted in the same colour as their partners in the destination.
+inline RgbImage render_match_overlay(const OccupancyGrid& source, const OccupancyGrid& dest,
+                                     const AreaGraph& dest_graph, const MatchResult& result,
+                                     const MapColors& colors = {}) {
+  std::vector<int> dest_colour(dest_graph.areas.size(), -1);
+  for (const auto& m : result.matched_areas) dest_colour[static_cast<std::size_t>(m.dest)] = m.dest;
+  RgbImage image = render_grid(dest, colors);
+  tint_areas(image, dest_graph, dest_colour);
+  draw_source_walls(image, dest, source, result.T_dest_source, colors.overlay);
+  return image;
+}
+
+/// The source map with its matched areas tinted in their partners' colours.
+inline RgbImage render_match_source(const OccupancyGrid& source, const AreaGraph& source_graph,
+                                    const MatchResult& result, const MapColors& colors = {}) {
+  std::vector<int> source_colour(source_graph.areas.size(), -1);
+  for (const auto& m : result.matched_areas) source_colour[static_cast<std::size_t>(m.source)] = m.dest;
+  RgbImage image = render_grid(source, colors);
+  tint_areas(image, source_graph, source_colour);
   return image;
 }
 

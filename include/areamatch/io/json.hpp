@@ -1,11 +1,13 @@
 #pragma once
 /// \file io/json.hpp
-/// JSON text for Area Graphs (what `areamatch segment --json` writes). Numbers are written so
+/// JSON text for Area Graphs (what `areamatch segment --json` writes) and match results (what
+/// `areamatch match --json` prints). Numbers are written so
 /// that they read back exactly; keys and arrays come in a fixed order, so equal graphs give
 /// equal text.
 
 #include "../area_graph.hpp"
 #include "../detail/format.hpp"
+#include "../match/result.hpp"
 
 #include <string>
 
@@ -71,6 +73,48 @@ inline std::string area_graph_json(const AreaGraph& graph) {
            json_point(p.line.second.x(), p.line.second.y()) + "]}";
   }
   return out + "\n  ]\n}\n";
+}
+
+namespace detail {
+/// A number, or null when it is not finite (JSON has no NaN).
+inline std::string json_number(double value) { return std::isfinite(value) ? format_double(value) : "null"; }
+}  // namespace detail
+
+/// A match result as one JSON object on one line: ok, reason (when not ok), the transform in
+/// world terms (rotation_deg, translation_m, scale, reflected) and as pixel_transform, score,
+/// confidence and its two margins, matched_areas, statistics and timings (seconds).
+inline std::string match_result_json(const MatchResult& r) {
+  using detail::json_number;
+  const Similarity2& T = r.T_dest_source;
+  const PixelTransform& m = r.pixel_transform;
+  std::string out = "{\"ok\": " + std::string(r.ok ? "true" : "false");
+  if (!r.ok) out += ", \"reason\": " + detail::json_quote(r.reason);
+  out += ", \"rotation_deg\": " + json_number(T.rotation * 180.0 / pi);
+  out += ", \"translation_m\": [" + json_number(T.translation.x()) + ", " + json_number(T.translation.y()) + "]";
+  out += ", \"scale\": " + json_number(T.scale) + ", \"reflected\": " + (T.reflected ? "true" : "false");
+  out += ", \"pixel_transform\": [[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) +
+         "], [" + json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
+  out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence);
+  out += ", \"margin_different\": " + json_number(r.margin_different) +
+         ", \"margin_mirrored\": " + json_number(r.margin_mirrored);
+  out += ", \"matched_areas\": [";
+  for (std::size_t i = 0; i < r.matched_areas.size(); ++i) {
+    const auto& a = r.matched_areas[i];
+    out += std::string(i ? ", " : "") + "{\"source\": " + std::to_string(a.source) + ", \"dest\": " +
+           std::to_string(a.dest) + ", \"overlap\": " + json_number(a.overlap) + "}";
+  }
+  const MatchStatistics& s = r.statistics;
+  out += "], \"statistics\": {\"source_areas\": " + std::to_string(s.source_areas) +
+         ", \"dest_areas\": " + std::to_string(s.dest_areas) + ", \"mutual_pairs\": " + std::to_string(s.mutual_pairs) +
+         ", \"hypotheses\": " + std::to_string(s.hypotheses) + ", \"clusters\": " + std::to_string(s.clusters) +
+         ", \"verified\": " + std::to_string(s.verified) + ", \"refined\": " + std::to_string(s.refined) + "}";
+  const MatchTimings& t = r.timings;
+  out += ", \"timings\": {\"segment_source_s\": " + json_number(t.segment_source_s) +
+         ", \"segment_dest_s\": " + json_number(t.segment_dest_s) + ", \"match_s\": " + json_number(t.match_s) +
+         ", \"total_s\": " + json_number(t.total_s) + ", \"features_s\": " + json_number(t.features_s) +
+         ", \"hypotheses_s\": " + json_number(t.hypotheses_s) + ", \"clustering_s\": " + json_number(t.clustering_s) +
+         ", \"selection_s\": " + json_number(t.selection_s) + "}}";
+  return out;
 }
 
 }  // namespace areamatch

@@ -59,12 +59,13 @@ inline std::string occupied_path(const OccupancyGrid& grid) {
 
 }  // namespace detail
 
-/// An SVG of `dest` with `source`'s occupied cells laid over it by `T_dest_source`.
-inline std::string overlay_svg(const OccupancyGrid& dest, const OccupancyGrid& source,
+/// An SVG of a picture of `dest` (one pixel per cell, e.g. `render_grid(dest)`) with `source`'s
+/// occupied cells laid over it as vectors by `T_dest_source`.
+inline std::string overlay_svg(const RgbImage& dest_picture, const OccupancyGrid& dest, const OccupancyGrid& source,
                                const Similarity2& T_dest_source, const MapColors& colors = {}) {
   using detail::format_double;
   const PixelTransform m = to_pixel_transform(T_dest_source, source, dest);
-  const std::string png = detail::base64(encode_png(render_grid(dest, colors)));
+  const std::string png = detail::base64(encode_png(dest_picture));
   std::string svg = "<svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"-0.5 -0.5 " + std::to_string(dest.width()) +
                     " " + std::to_string(dest.height()) + "\" width=\"" + std::to_string(dest.width()) +
                     "\" height=\"" + std::to_string(dest.height()) + "\">\n";
@@ -77,6 +78,12 @@ inline std::string overlay_svg(const OccupancyGrid& dest, const OccupancyGrid& s
   svg += "<path fill=\"" + detail::svg_color(colors.overlay) + "\" fill-opacity=\"0.8\" d=\"" +
          detail::occupied_path(source) + "\"/>\n</g>\n</svg>\n";
   return svg;
+}
+
+/// An SVG of `dest` with `source`'s occupied cells laid over it by `T_dest_source`.
+inline std::string overlay_svg(const OccupancyGrid& dest, const OccupancyGrid& source,
+                               const Similarity2& T_dest_source, const MapColors& colors = {}) {
+  return overlay_svg(render_grid(dest, colors), dest, source, T_dest_source, colors);
 }
 
 /// An SVG of a segmentation: the coloured areas as an embedded PNG (one pixel per cell), each

@@ -1,0 +1,329 @@
+#pragma once
+/// \file match/features.hpp
+/// Per-area features and their costs (paper §III-B, ALGORITHM.md §2.1–2.2), and `FeatureSet`,
+/// which composes them.
+///
+/// A feature policy describes one area by a value (its descriptor) and compares two descriptors
+/// by a cost in [0, 1] (0 = alike). It may also say which segment of each area the comparison
+/// matched: the hypothesis stage turns such a segment pair into a rotation. The smallest
+/// conforming feature:
+/// \code
+/// struct PassageCount {
+///   using descriptor_type = double;
+///   descriptor_type describe(const areamatch::AreaGraph&, const areamatch::Area& area) const {
+///     return static_cast<double>(area.passages.size());
+///   }
+///   double cost(const descriptor_type& a, const descriptor_type& b) const {
+///     return areamatch::relative_difference(a, b);
+///   }
+///   // optional: std::optional<areamatch::SegmentMatch> segments(const descriptor_type& source,
+///   //                                                             const descriptor_type& dest) const;
+/// };
+/// \endcode
+/// The paper's three features are `AreaSize`, `PassageDistances` and `HullDiameter`.
+
+#include "../area_graph.hpp"
+#include "../geometry.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <tuple>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace areamatch {
+
+/// |a − b| / max(a, b) for non-negative values, guarded: 0 when both are ≈ 0, 1 when only one is
+/// (ALGORITHM.md §2.2, §4.5).
+inline double relative_difference(double a, double b) {
+  constexpr double epsilon = 1e-9;
+  const double denominator = std::max(a, b);
+  if (denominator < epsilon) return std::max(std::abs(a), std::abs(b)) < epsilon ? 0.0 : 1.0;
+  return std::min(1.0, std::abs(a - b) / denominator);
+}
+
+/// Where a segment came from: the hypothesis stage ranks and reports by it.
+enum class SegmentSource : std::uint8_t {
+  passage_pair,   ///< two passages of the area (a passage distance)
+  hull_diameter,  ///< the longest distance across the area's convex hull
+  other           ///< a user feature
+};
+
+inline const char* to_string(SegmentSource source) {
+  return source == SegmentSource::passage_pair ? "passage_pair"
+         : source == SegmentSource::hull_diameter ? "hull_diameter" : "other";
+}
+
+/// A segment in one area, in its map's world frame (metres). Undirected: a and b may swap.
+struct AreaSegment {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  double length() const { return (b - a).norm(); }
+};
+
+/// Two segments a feature comparison matched, one per area: the evidence for a rotation.
+struct SegmentMatch {
+  AreaSegment source;
+  AreaSegment dest;
+  SegmentSource kind = SegmentSource::other;
+};
+
+// --- The paper's features ------------------------------------------------------------------------
+
+/// Area size: c_a = |√a_i − √a_j| / √max(a_i, a_j). The square root makes it linear in length.
+struct AreaSize {
+  using descriptor_type = double;  ///< m²
+  descriptor_type describe(const AreaGraph&, const Area& area) const { return area.size_m2; }
+  double cost(double source, double dest) const {
+    return relative_difference(std::sqrt(std::max(0.0, source)), std::sqrt(std::max(0.0, dest)));
+  }
+};
+
+namespace detail {
+
+/// The longest distance between two vertices of a convex hull, and that segment.
+inline AreaSegment hull_diameter(const Polygon2& hull) {
+  AreaSegment best;
+  double best_length = -1.0;
+  const auto& ring = hull.outer();
+  // Hulls of our areas have tens of vertices: O(h²) is simpler than rotating calipers and as fast.
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    for (std::size_t j = i + 1; j < ring.size(); ++j) {
+      const double length = bg::distance(ring[i], ring[j]);
+      if (length > best_length) {
+        best_length = length;
+        best = {to_vector(ring[i]), to_vector(ring[j])};
+      }
+    }
+  }
+  return best;
+}
+
+}  // namespace detail
+
+/// Convex-hull longest distance: c_l = |ld_i − ld_j| / max(ld_i, ld_j). Its segments are the two
+/// diameters.
+struct HullDiameter {
+  using descriptor_type = AreaSegment;
+  descriptor_type describe(const AreaGraph&, const Area& area) const {
+    return detail::hull_diameter(area.convex_hull);
+  }
+  double cost(const descriptor_type& source, const descriptor_type& dest) const {
+    return relative_difference(source.length(), dest.length());
+  }
+  std::optional<SegmentMatch> segments(const descriptor_type& source, const descriptor_type& dest) const {
+    return SegmentMatch{source, dest, SegmentSource::hull_diameter};
+  }
+};
+
+/// Passage distances: the distance between every pair of an area's passages (K passages give
+/// K(K−1)/2 values). c_p = min over pairs |pd_n − pd_m| / max(pd_n, pd_m), and the pair that
+/// reached the minimum is the segment evidence.
+///
+/// An area with fewer than two passages has no passage distance. Then, as the paper says ("the
+/// convex hull longest distance is used for regions that cannot obtain passage distance"), the
+/// cost falls back to the hull-diameter cost c_l — whenever *either* side lacks a passage
+/// distance, so every pair gets a cost in [0, 1] and the weights keep summing to one — and there
+/// is no passage-pair evidence for that pair (the hull diameters give it instead).
+struct PassageDistances {
+  struct descriptor_type {
+    std::vector<AreaSegment> pairs;   ///< one per pair of distinct passage positions
+    std::vector<double> lengths;      ///< pairs[n].length(), ascending
+    AreaSegment hull_diameter;        ///< the fallback
+  };
+
+  descriptor_type describe(const AreaGraph& graph, const Area& area) const {
+    descriptor_type d;
+    std::vector<Eigen::Vector2d> positions;
+    for (int id : area.passages) {
+      const Eigen::Vector2d& p = graph.passages[static_cast<std::size_t>(id)].position;
+      // The same opening listed twice would give pd = 0 and a 0/0 cost (ALGORITHM.md §4.3).
+      const bool seen = std::any_of(positions.begin(), positions.end(),
+                                    [&](const Eigen::Vector2d& q) { return (q - p).norm() < 1e-6; });
+      if (!seen) positions.push_back(p);
+    }
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+      for (std::size_t j = i + 1; j < positions.size(); ++j) d.pairs.push_back({positions[i], positions[j]});
+    }
+    // Sorted by length so the cost is a merge of two sorted lists, not all pairs of pairs.
+    std::stable_sort(d.pairs.begin(), d.pairs.end(),
+                     [](const AreaSegment& x, const AreaSegment& y) { return x.length() < y.length(); });
+    for (const auto& s : d.pairs) d.lengths.push_back(s.length());
+    d.hull_diameter = detail::hull_diameter(area.convex_hull);
+    return d;
+  }
+
+  double cost(const descriptor_type& source, const descriptor_type& dest) const {
+    if (source.pairs.empty() || dest.pairs.empty()) {
+      return relative_difference(source.hull_diameter.length(), dest.hull_diameter.length());
+    }
+    const auto [n, m] = best(source, dest);
+    return relative_difference(source.lengths[n], dest.lengths[m]);
+  }
+
+  std::optional<SegmentMatch> segments(const descriptor_type& source, const descriptor_type& dest) const {
+    if (source.pairs.empty() || dest.pairs.empty()) return std::nullopt;
+    const auto [n, m] = best(source, dest);
+    return SegmentMatch{source.pairs[n], dest.pairs[m], SegmentSource::passage_pair};
+  }
+
+ private:
+  /// Indices of the closest pair of lengths (relative difference), first in order on ties.
+  static std::pair<std::size_t, std::size_t> best(const descriptor_type& s, const descriptor_type& d) {
+    std::pair<std::size_t, std::size_t> arg{0, 0};
+    double best_cost = 2.0;
+    // For each source length only the nearest destination lengths (either side in the sorted
+    // list) can be the minimum of the relative difference.
+    std::size_t m = 0;
+    for (std::size_t n = 0; n < s.lengths.size(); ++n) {
+      while (m + 1 < d.lengths.size() && d.lengths[m + 1] <= s.lengths[n]) ++m;
+      for (std::size_t c = m; c < std::min(m + 2, d.lengths.size()); ++c) {
+        const double cost = relative_difference(s.lengths[n], d.lengths[c]);
+        if (cost < best_cost) {
+          best_cost = cost;
+          arg = {n, c};
+        }
+      }
+    }
+    return arg;
+  }
+};
+
+// --- The feature concept ------------------------------------------------------------------------
+
+namespace detail {
+template <class F, class = void>
+struct has_describe_and_cost : std::false_type {};
+template <class F>
+struct has_describe_and_cost<
+    F, std::void_t<typename F::descriptor_type,
+                   decltype(std::declval<const F&>().describe(std::declval<const AreaGraph&>(), std::declval<const Area&>())),
+                   decltype(std::declval<const F&>().cost(std::declval<const typename F::descriptor_type&>(),
+                                                          std::declval<const typename F::descriptor_type&>()))>>
+    : std::bool_constant<
+          std::is_convertible_v<decltype(std::declval<const F&>().describe(std::declval<const AreaGraph&>(),
+                                                                           std::declval<const Area&>())),
+                                typename F::descriptor_type> &&
+          std::is_convertible_v<decltype(std::declval<const F&>().cost(
+                                    std::declval<const typename F::descriptor_type&>(),
+                                    std::declval<const typename F::descriptor_type&>())),
+                                double>> {};
+
+template <class F, class = void>
+struct has_segments : std::false_type {};
+template <class F>
+struct has_segments<F, std::void_t<decltype(std::declval<const F&>().segments(
+                           std::declval<const typename F::descriptor_type&>(),
+                           std::declval<const typename F::descriptor_type&>()))>>
+    : std::is_convertible<decltype(std::declval<const F&>().segments(
+                              std::declval<const typename F::descriptor_type&>(),
+                              std::declval<const typename F::descriptor_type&>())),
+                          std::optional<SegmentMatch>> {};
+}  // namespace detail
+
+/// True when F is a feature policy (see the file comment).
+template <class F>
+inline constexpr bool is_feature_v = detail::has_describe_and_cost<F>::value;
+
+/// True when the feature also reports the segments it matched.
+template <class F>
+inline constexpr bool feature_has_segments_v = detail::has_segments<F>::value;
+
+// --- FeatureSet ---------------------------------------------------------------------------------
+
+/// Several features side by side. `FeatureSet<AreaSize, PassageDistances, HullDiameter>` is the
+/// paper's set; weights are given per feature, in this order.
+template <class... Features>
+struct FeatureSet {
+  static_assert(sizeof...(Features) > 0, "areamatch: FeatureSet needs at least one feature");
+  static_assert((is_feature_v<Features> && ...),
+                "areamatch: every FeatureSet member must be a feature policy: a type with "
+                "`using descriptor_type = ...;`, `descriptor_type describe(const AreaGraph&, const Area&) const` "
+                "and `double cost(const descriptor_type&, const descriptor_type&) const` (see match/features.hpp)");
+
+  static constexpr std::size_t size = sizeof...(Features);
+  using descriptors_type = std::tuple<std::vector<typename Features::descriptor_type>...>;
+
+  std::tuple<Features...> features;
+
+  /// Every feature's descriptor of every area of the graph.
+  descriptors_type describe(const AreaGraph& graph) const {
+    descriptors_type out;
+    describe_each(graph, out, std::index_sequence_for<Features...>{});
+    return out;
+  }
+
+  /// One cost matrix per feature: rows = source areas, columns = destination areas.
+  std::vector<Eigen::MatrixXd> costs(const descriptors_type& source, const descriptors_type& dest) const {
+    std::vector<Eigen::MatrixXd> out;
+    costs_each(source, dest, out, std::index_sequence_for<Features...>{});
+    return out;
+  }
+
+  /// The segment evidence of every feature that gives one, for source area i and destination
+  /// area j, in feature order.
+  std::vector<SegmentMatch> segments(const descriptors_type& source, const descriptors_type& dest, std::size_t i,
+                                     std::size_t j) const {
+    std::vector<SegmentMatch> out;
+    segments_each(source, dest, i, j, out, std::index_sequence_for<Features...>{});
+    return out;
+  }
+
+ private:
+  template <std::size_t... I>
+  void describe_each(const AreaGraph& graph, descriptors_type& out, std::index_sequence<I...>) const {
+    (describe_one<I>(graph, std::get<I>(out)), ...);
+  }
+  template <std::size_t I, class Vector>
+  void describe_one(const AreaGraph& graph, Vector& out) const {
+    out.reserve(graph.areas.size());
+    for (const Area& area : graph.areas) out.push_back(std::get<I>(features).describe(graph, area));
+  }
+
+  template <std::size_t... I>
+  void costs_each(const descriptors_type& s, const descriptors_type& d, std::vector<Eigen::MatrixXd>& out,
+                  std::index_sequence<I...>) const {
+    (out.push_back(cost_matrix<I>(std::get<I>(s), std::get<I>(d))), ...);
+  }
+  template <std::size_t I, class Vector>
+  Eigen::MatrixXd cost_matrix(const Vector& s, const Vector& d) const {
+    Eigen::MatrixXd m(static_cast<Eigen::Index>(s.size()), static_cast<Eigen::Index>(d.size()));
+    for (std::size_t i = 0; i < s.size(); ++i) {
+      for (std::size_t j = 0; j < d.size(); ++j) {
+        const double c = std::get<I>(features).cost(s[i], d[j]);
+        // A user feature returning NaN or values outside [0, 1] must not derail the ranking.
+        m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 1.0;
+      }
+    }
+    return m;
+  }
+
+  template <std::size_t... I>
+  void segments_each(const descriptors_type& s, const descriptors_type& d, std::size_t i, std::size_t j,
+                     std::vector<SegmentMatch>& out, std::index_sequence<I...>) const {
+    (segments_one<I>(std::get<I>(s)[i], std::get<I>(d)[j], out), ...);
+  }
+  template <std::size_t I, class Descriptor>
+  void segments_one(const Descriptor& s, const Descriptor& d, std::vector<SegmentMatch>& out) const {
+    using F = std::tuple_element_t<I, std::tuple<Features...>>;
+    if constexpr (feature_has_segments_v<F>) {
+      if (auto match = std::get<I>(features).segments(s, d)) out.push_back(*match);
+    }
+  }
+};
+
+/// The paper's features: area size, passage distances, convex-hull longest distance.
+using PaperFeatures = FeatureSet<AreaSize, PassageDistances, HullDiameter>;
+
+template <class T>
+struct is_feature_set : std::false_type {};
+template <class... F>
+struct is_feature_set<FeatureSet<F...>> : std::true_type {};
+
+}  // namespace areamatch

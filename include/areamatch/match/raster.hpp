@@ -1,0 +1,151 @@
+#pragma once
+/// \file match/raster.hpp
+/// An Area Graph's labelled free space on square cells of a chosen size (e.g. 0.2 m), so that
+/// the overlap of two maps under a candidate transform is a few thousand lookups instead of a
+/// polygon intersection. The verification stage scores hundreds of candidates this way
+/// (ALGORITHM.md §7, recommendation 3).
+
+#include "../area_graph.hpp"
+#include "../error.hpp"
+#include "../transform.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <utility>
+#include <vector>
+
+namespace areamatch {
+
+/// The areas of one map resampled onto cells of side `cell_m`. A cell belongs to the area that
+/// holds most of its map cells, and to none when less than half of it is in some area.
+struct AreaRaster {
+  double cell_m = 0.0;
+  int width = 0;
+  int height = 0;
+  /// World metres → continuous raster coordinates; cell (c, r) covers [c, c+1) × [r, r+1).
+  Eigen::Affine2d cell_from_world = Eigen::Affine2d::Identity();
+  std::vector<int> labels;                ///< per cell (row-major): area id or −1
+  std::vector<Eigen::Vector2d> centres;   ///< world centres of the labelled cells, row-major order
+  std::vector<int> centre_labels;         ///< their area ids
+  std::vector<std::vector<int>> area_cells;  ///< per area: indices into `centres`
+
+  std::size_t labelled_count() const { return centres.size(); }
+  double cell_area() const { return cell_m * cell_m; }
+
+  /// The area id at a world point, −1 outside every area or outside the raster.
+  int label_at(const Eigen::Vector2d& world) const { return label_at_cell(cell_from_world * world); }
+  /// The area id at continuous raster coordinates, −1 outside.
+  int label_at_cell(const Eigen::Vector2d& p) const {
+    if (!(p.x() >= 0.0 && p.y() >= 0.0 && p.x() < width && p.y() < height)) return -1;
+    return labels[static_cast<std::size_t>(static_cast<int>(p.y())) * static_cast<std::size_t>(width) +
+                  static_cast<std::size_t>(static_cast<int>(p.x()))];
+  }
+};
+
+/// Resamples `graph.labels` onto cells of side `cell_m` (metres, > 0; cells smaller than a map
+/// cell are allowed but gain nothing).
+inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
+  detail::require_positive(cell_m, "raster cell size");
+  const GridInfo& g = graph.grid;
+  const std::size_t expected = static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height);
+  if (graph.labels.size() != expected) throw parameter_error("area raster: the graph's labels do not match its grid");
+  const double factor = cell_m / g.resolution;  // map cells per raster cell, along one side
+  AreaRaster r;
+  r.cell_m = cell_m;
+  r.width = std::max(1, static_cast<int>(std::ceil(g.width / factor)));
+  r.height = std::max(1, static_cast<int>(std::ceil(g.height / factor)));
+  // Pixel (c, row) covers continuous pixel coordinates [c − ½, c + ½]; raster u = (c + ½) / factor.
+  Eigen::Affine2d cell_from_pixel = Eigen::Affine2d::Identity();
+  cell_from_pixel.linear() = Eigen::Matrix2d::Identity() / factor;
+  cell_from_pixel.translation() = Eigen::Vector2d::Constant(0.5 / factor);
+  r.cell_from_world = cell_from_pixel * g.world_from_pixel().inverse();
+  const Eigen::Affine2d world_from_cell = r.cell_from_world.inverse();
+
+  r.labels.assign(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height), -1);
+  r.area_cells.resize(graph.areas.size());
+  std::vector<std::pair<int, int>> votes;  // (area id, map cells) within one raster cell
+  for (int row = 0; row < r.height; ++row) {
+    const int row0 = static_cast<int>(std::ceil(row * factor - 0.5));
+    const int row1 = std::min(g.height, static_cast<int>(std::ceil((row + 1) * factor - 0.5)));
+    for (int col = 0; col < r.width; ++col) {
+      const int col0 = static_cast<int>(std::ceil(col * factor - 0.5));
+      const int col1 = std::min(g.width, static_cast<int>(std::ceil((col + 1) * factor - 0.5)));
+      votes.clear();
+      int cells = 0, labelled = 0;
+      for (int y = std::max(0, row0); y < row1; ++y) {
+        for (int x = std::max(0, col0); x < col1; ++x) {
+          ++cells;
+          const int label = graph.labels[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) +
+                                         static_cast<std::size_t>(x)];
+          if (label < 0) continue;
+          ++labelled;
+          auto it = std::find_if(votes.begin(), votes.end(), [&](const auto& v) { return v.first == label; });
+          if (it == votes.end()) votes.emplace_back(label, 1);
+          else ++it->second;
+        }
+      }
+      if (cells == 0 || 2 * labelled < cells) continue;
+      // Most map cells wins; the lower id on ties, so the result does not depend on scan order.
+      auto best = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+        return a.second < b.second || (a.second == b.second && a.first > b.first);
+      });
+      const int label = best->first;
+      r.labels[static_cast<std::size_t>(row) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(col)] = label;
+      r.area_cells[static_cast<std::size_t>(label)].push_back(static_cast<int>(r.centres.size()));
+      r.centres.push_back(world_from_cell * Eigen::Vector2d(col + 0.5, row + 0.5));
+      r.centre_labels.push_back(label);
+    }
+  }
+  return r;
+}
+
+/// How many of the source cells (every `stride`-th) land in some destination area under
+/// T_dest_source.
+inline std::size_t count_overlap(const AreaRaster& source, const AreaRaster& dest, const Similarity2& T_dest_source,
+                                 std::size_t stride = 1) {
+  // Fold the transform into the destination's raster map: one affine per point.
+  const Eigen::Affine2d to_cell = dest.cell_from_world * T_dest_source.affine();
+  const Eigen::Matrix2d m = to_cell.linear();
+  const Eigen::Vector2d t = to_cell.translation();
+  std::size_t hits = 0;
+  for (std::size_t i = 0; i < source.centres.size(); i += stride) {
+    if (dest.label_at_cell(m * source.centres[i] + t) >= 0) ++hits;
+  }
+  return hits;
+}
+
+/// Intersection over union of the two maps' area-covered free space under T_dest_source, from
+/// every `stride`-th source cell. Both rasters must have the same cell size (a rigid transform
+/// keeps areas, so source cells and destination cells count alike).
+inline double free_space_iou(const AreaRaster& source, const AreaRaster& dest, const Similarity2& T_dest_source,
+                             std::size_t stride = 1) {
+  if (source.centres.empty() || dest.centres.empty()) return 0.0;
+  stride = std::max<std::size_t>(1, stride);
+  const std::size_t samples = (source.centres.size() + stride - 1) / stride;
+  const double hits = static_cast<double>(count_overlap(source, dest, T_dest_source, stride)) *
+                      static_cast<double>(source.centres.size()) / static_cast<double>(samples);
+  const double scale2 = T_dest_source.scale * T_dest_source.scale;
+  const double union_cells = static_cast<double>(source.centres.size()) * scale2 +
+                             static_cast<double>(dest.centres.size()) - hits * scale2;
+  return union_cells > 0.0 ? std::clamp(hits * scale2 / union_cells, 0.0, 1.0) : 0.0;
+}
+
+/// The paper's overlap percentage OP = area(T(P_i) ∩ P_j) / min(a_i, a_j), counted on the rasters.
+inline double raster_area_overlap(const AreaRaster& source, const AreaRaster& dest, int source_area, int dest_area,
+                                  double source_size_m2, double dest_size_m2, const Similarity2& T_dest_source) {
+  const double denominator = std::min(source_size_m2, dest_size_m2);
+  if (!(denominator > 0.0)) return 0.0;
+  const Eigen::Affine2d to_cell = dest.cell_from_world * T_dest_source.affine();
+  std::size_t hits = 0;
+  for (int index : source.area_cells[static_cast<std::size_t>(source_area)]) {
+    if (dest.label_at_cell(to_cell * source.centres[static_cast<std::size_t>(index)]) == dest_area) ++hits;
+  }
+  const double overlap_m2 = static_cast<double>(hits) * source.cell_area() * T_dest_source.scale * T_dest_source.scale;
+  return std::min(1.0, overlap_m2 / denominator);
+}
+
+}  // namespace areamatch

@@ -1,0 +1,249 @@
+#pragma once
+/// \file match/refine.hpp
+/// Trimmed ICP on the boundaries of the two maps' area-covered free space: turns a coarse
+/// per-area transform into an accurate global one (ALGORITHM.md §7, recommendation 5). The
+/// matching gate shrinks from `gates_m.front()` to `gates_m.back()`; at each step only the
+/// `keep_fraction` closest correspondences count, so laser streaks, furniture and rooms one map
+/// lacks do not pull the result.
+
+#include "../area_graph.hpp"
+#include "../error.hpp"
+#include "../grid.hpp"
+#include "../transform.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/Geometry>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <utility>
+#include <vector>
+
+namespace areamatch {
+
+struct RefineParams {
+  std::vector<double> gates_m{2.0, 1.4, 1.0, 0.7, 0.5, 0.4};  ///< correspondence gates, one stage each
+  int iterations_per_gate = 4;
+  double keep_fraction = 0.8;       ///< share of the gated correspondences kept (closest first)
+  double point_spacing_m = 0.1;     ///< source boundary points are thinned to about this spacing
+  int max_points = 4000;            ///< and to at most this many
+  double lookup_cell_m = 0.1;       ///< cell of the destination's nearest-boundary-point lookup
+
+  void validate() const {
+    if (gates_m.empty()) throw parameter_error("RefineParams::gates_m must not be empty");
+    for (double g : gates_m) detail::require_positive(g, "RefineParams::gates_m");
+    if (iterations_per_gate < 1) throw parameter_error("RefineParams::iterations_per_gate must be >= 1");
+    if (!(keep_fraction > 0.0 && keep_fraction <= 1.0)) throw parameter_error("RefineParams::keep_fraction must be in (0, 1]");
+    detail::require_positive(point_spacing_m, "RefineParams::point_spacing_m");
+    if (max_points < 3) throw parameter_error("RefineParams::max_points must be >= 3");
+    detail::require_positive(lookup_cell_m, "RefineParams::lookup_cell_m");
+  }
+};
+
+namespace detail {
+
+/// World positions of the cells on the edge of a region (a cell inside with a 4-neighbour
+/// outside or off the grid), thinned to one per `spacing_m` square, in scan order, then evenly to
+/// at most `max_points`. `inside(index)` tells whether the cell with that row-major index is in it.
+template <class Inside>
+std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, Inside inside, double spacing_m,
+                                             std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+  const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
+  const int bins_x = (g.width + step - 1) / step;
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(bins_x) * static_cast<std::size_t>((g.height + step - 1) / step), 0);
+  auto in = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < g.width && y < g.height &&
+           inside(static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x));
+  };
+  const Eigen::Affine2d world = g.world_from_pixel();
+  std::vector<Eigen::Vector2d> points;
+  for (int y = 0; y < g.height; ++y) {
+    for (int x = 0; x < g.width; ++x) {
+      if (!in(x, y)) continue;
+      if (in(x - 1, y) && in(x + 1, y) && in(x, y - 1) && in(x, y + 1)) continue;
+      auto& bin = taken[static_cast<std::size_t>(y / step) * static_cast<std::size_t>(bins_x) + static_cast<std::size_t>(x / step)];
+      if (bin) continue;
+      bin = 1;
+      points.push_back(world * Eigen::Vector2d(x, y));
+    }
+  }
+  if (points.size() > max_points) {
+    std::vector<Eigen::Vector2d> thinned;
+    thinned.reserve(max_points);
+    for (std::size_t i = 0; i < max_points; ++i) thinned.push_back(points[i * points.size() / max_points]);
+    points.swap(thinned);
+  }
+  return points;
+}
+
+/// Edge points of a map's free space (what the reference scorer's boundary is made of).
+inline std::vector<Eigen::Vector2d> free_boundary_points(const OccupancyGrid& grid, const GridInfo& info, double spacing_m,
+                                                         std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+  const auto& cells = grid.cells();
+  return boundary_points(info, [&](std::size_t i) { return cells[i] == CellState::free; }, spacing_m, max_points);
+}
+
+}  // namespace detail
+
+/// The destination side of ICP: boundary points and, per cell of a square lookup grid, the index
+/// of the (approximately) nearest one — a two-pass nearest-seed propagation, exact to a fraction
+/// of a cell, which is all a shrinking-gate ICP needs.
+class BoundaryLookup {
+ public:
+  BoundaryLookup() = default;
+  /// A lookup over `points` on cells of `cell_m`, reaching `margin_m` beyond their bounding box.
+  BoundaryLookup(std::vector<Eigen::Vector2d> points, double cell_m, double margin_m)
+      : cell_m_(cell_m), points_(std::move(points)) {
+    if (points_.empty()) return;
+    Eigen::Vector2d lo = points_.front(), hi = points_.front();
+    for (const auto& p : points_) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+    origin_ = lo - Eigen::Vector2d::Constant(margin_m);
+    width_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2.0 * margin_m) / cell_m)) + 1;
+    height_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2.0 * margin_m) / cell_m)) + 1;
+    nearest_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), -1);
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const auto [x, y] = cell_of(points_[i]);
+      auto& slot = nearest_[index(x, y)];
+      if (slot < 0 || distance2(points_[i], x, y) < distance2(points_[static_cast<std::size_t>(slot)], x, y)) {
+        slot = static_cast<int>(i);
+      }
+    }
+    propagate();
+  }
+
+  bool empty() const { return points_.empty(); }
+  const std::vector<Eigen::Vector2d>& points() const { return points_; }
+
+  /// The boundary point nearest to p, or nullptr when p is outside the lookup grid.
+  const Eigen::Vector2d* nearest(const Eigen::Vector2d& p) const {
+    const double fx = (p.x() - origin_.x()) / cell_m_, fy = (p.y() - origin_.y()) / cell_m_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fx < width_ && fy < height_)) return nullptr;
+    const int slot = nearest_[index(static_cast<int>(fx), static_cast<int>(fy))];
+    return slot < 0 ? nullptr : &points_[static_cast<std::size_t>(slot)];
+  }
+
+ private:
+  std::pair<int, int> cell_of(const Eigen::Vector2d& p) const {
+    return {std::clamp(static_cast<int>((p.x() - origin_.x()) / cell_m_), 0, width_ - 1),
+            std::clamp(static_cast<int>((p.y() - origin_.y()) / cell_m_), 0, height_ - 1)};
+  }
+  std::size_t index(int x, int y) const {
+    return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
+  }
+  double distance2(const Eigen::Vector2d& p, int x, int y) const {
+    return (p - (origin_ + cell_m_ * Eigen::Vector2d(x + 0.5, y + 0.5))).squaredNorm();
+  }
+  void relax(int x, int y, int nx, int ny) {
+    if (nx < 0 || ny < 0 || nx >= width_ || ny >= height_) return;
+    const int candidate = nearest_[index(nx, ny)];
+    if (candidate < 0) return;
+    int& slot = nearest_[index(x, y)];
+    if (slot < 0 || distance2(points_[static_cast<std::size_t>(candidate)], x, y) <
+                        distance2(points_[static_cast<std::size_t>(slot)], x, y)) {
+      slot = candidate;
+    }
+  }
+  void propagate() {
+    for (int y = 0; y < height_; ++y) {
+      for (int x = 0; x < width_; ++x) {
+        relax(x, y, x - 1, y); relax(x, y, x, y - 1); relax(x, y, x - 1, y - 1); relax(x, y, x + 1, y - 1);
+      }
+      for (int x = width_ - 1; x >= 0; --x) relax(x, y, x + 1, y);
+    }
+    for (int y = height_ - 1; y >= 0; --y) {
+      for (int x = width_ - 1; x >= 0; --x) {
+        relax(x, y, x + 1, y); relax(x, y, x, y + 1); relax(x, y, x + 1, y + 1); relax(x, y, x - 1, y + 1);
+      }
+      for (int x = 0; x < width_; ++x) relax(x, y, x - 1, y);
+    }
+  }
+
+  double cell_m_ = 0.1;
+  Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
+  int width_ = 0;
+  int height_ = 0;
+  std::vector<Eigen::Vector2d> points_;
+  std::vector<int> nearest_;
+};
+
+/// Share of `source_points` that land within `distance_m` of a destination boundary point under
+/// T_dest_source: how well the walls agree.
+inline double boundary_inlier_fraction(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
+                                       const Similarity2& T_dest_source, double distance_m) {
+  if (source_points.empty() || dest.empty()) return 0.0;
+  std::size_t inliers = 0;
+  const double d2 = distance_m * distance_m;
+  for (const auto& p : source_points) {
+    const Eigen::Vector2d q = T_dest_source * p;
+    const Eigen::Vector2d* nearest = dest.nearest(q);
+    if (nearest && (*nearest - q).squaredNorm() <= d2) ++inliers;
+  }
+  return static_cast<double>(inliers) / static_cast<double>(source_points.size());
+}
+
+/// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept) that best lays
+/// `source_points` onto the destination boundary. Returns `initial` when too few points match.
+inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
+                              const Similarity2& initial, const RefineParams& params) {
+  Similarity2 T = initial;
+  if (dest.empty() || source_points.size() < 3) return T;
+  struct Match {
+    double distance2;
+    Eigen::Vector2d from;  // F·scale·x, the source point before rotation
+    Eigen::Vector2d to;
+  };
+  std::vector<Match> matches;
+  matches.reserve(source_points.size());
+  const Similarity2 shape{0.0, Eigen::Vector2d::Zero(), initial.scale, initial.reflected};
+  for (double gate : params.gates_m) {
+    for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
+      matches.clear();
+      const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(T.rotation).toRotationMatrix();
+      for (const auto& x : source_points) {
+        const Eigen::Vector2d from = shape * x;
+        const Eigen::Vector2d y = rotation * from + T.translation;
+        const Eigen::Vector2d* d = dest.nearest(y);
+        if (!d) continue;
+        const double d2 = (*d - y).squaredNorm();
+        if (d2 <= gate * gate) matches.push_back({d2, from, *d});
+      }
+      if (matches.size() < 3) return T;
+      const std::size_t keep = std::max<std::size_t>(3, static_cast<std::size_t>(params.keep_fraction * matches.size()));
+      if (keep < matches.size()) {
+        std::nth_element(matches.begin(), matches.begin() + static_cast<std::ptrdiff_t>(keep), matches.end(),
+                         [](const Match& a, const Match& b) { return a.distance2 < b.distance2; });
+        matches.resize(keep);
+      }
+      // 2D Procrustes: the rotation that best turns the centred source points onto the targets.
+      Eigen::Vector2d mean_from = Eigen::Vector2d::Zero(), mean_to = Eigen::Vector2d::Zero();
+      for (const auto& m : matches) {
+        mean_from += m.from;
+        mean_to += m.to;
+      }
+      mean_from /= static_cast<double>(matches.size());
+      mean_to /= static_cast<double>(matches.size());
+      double dot = 0.0, cross = 0.0;
+      for (const auto& m : matches) {
+        const Eigen::Vector2d a = m.from - mean_from, b = m.to - mean_to;
+        dot += a.dot(b);
+        cross += a.x() * b.y() - a.y() * b.x();
+      }
+      const double angle = std::atan2(cross, dot);
+      const Similarity2 previous = T;
+      T.rotation = wrap_angle(angle);
+      T.translation = mean_to - Eigen::Rotation2Dd(angle) * mean_from;
+      if (std::abs(wrap_angle(T.rotation - previous.rotation)) < 1e-5 &&
+          (T.translation - previous.translation).norm() < 1e-4) {
+        break;
+      }
+    }
+  }
+  return T;
+}
+
+}  // namespace areamatch

@@ -1,0 +1,73 @@
+#pragma once
+/// \file match/result.hpp
+/// What a match returns. "No acceptable match" is a result (`ok == false` with a reason and the
+/// scores), not an exception; exceptions are for bad input.
+
+#include "../area_graph.hpp"
+#include "../transform.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <string>
+#include <vector>
+
+namespace areamatch {
+
+/// A source area and the destination area it lands on under the result's transform.
+struct MatchedAreaPair {
+  int source = -1;
+  int dest = -1;
+  double overlap = 0.0;  ///< area(T(source) ∩ dest) / min(size_source, size_dest)
+};
+
+/// Wall-clock seconds per stage. The segment fields are zero when graphs were passed in.
+struct MatchTimings {
+  double segment_source_s = 0.0;
+  double segment_dest_s = 0.0;
+  double features_s = 0.0;     ///< descriptors, cost matrix, mutual pairs
+  double hypotheses_s = 0.0;   ///< rasters, wall directions, hypotheses with their overlap
+  double clustering_s = 0.0;
+  double selection_s = 0.0;    ///< verification (or the paper's Σ OP) and refinement
+  double match_s = 0.0;        ///< everything after segmentation
+  double total_s = 0.0;
+};
+
+/// Counts that explain a result.
+struct MatchStatistics {
+  std::size_t source_areas = 0;
+  std::size_t dest_areas = 0;
+  std::size_t mutual_pairs = 0;
+  std::size_t hypotheses = 0;
+  std::size_t clusters = 0;
+  std::size_t verified = 0;    ///< candidates scored on the whole map
+  std::size_t refined = 0;
+};
+
+struct MatchResult {
+  bool ok = false;
+  std::string reason;              ///< why not ok (empty when ok)
+  Similarity2 T_dest_source;       ///< source world → destination world (metres)
+  PixelTransform pixel_transform = PixelTransform::Zero();  ///< source pixel → destination pixel
+  /// Whole-map score of the result: IoU of the two maps' area-covered free space (default), or
+  /// the paper's Σ OP over the mutual pairs (paper preset).
+  double score = 0.0;
+  /// min(margin_different, margin_mirrored): how much better the result scores (IoU) than the
+  /// best clearly different transform and than the best transform on the other side of the
+  /// mirror. Small means ambiguous (a near-symmetric building).
+  double confidence = 0.0;
+  double margin_different = std::numeric_limits<double>::quiet_NaN();  ///< NaN when there is no rival
+  double margin_mirrored = std::numeric_limits<double>::quiet_NaN();   ///< NaN without allow_reflection
+  std::vector<MatchedAreaPair> matched_areas;
+  MatchStatistics statistics;
+  MatchTimings timings;
+};
+
+/// The pixel transform (source image pixel → destination image pixel) of a world transform.
+inline PixelTransform to_pixel_transform(const Similarity2& T_dest_source, const GridInfo& source,
+                                         const GridInfo& dest) {
+  const Eigen::Affine2d a = dest.world_from_pixel().inverse() * T_dest_source.affine() * source.world_from_pixel();
+  return a.matrix().topRows<2>();
+}
+
+}  // namespace areamatch

@@ -1,0 +1,495 @@
+#pragma once
+/// \file matcher.hpp
+/// `Matcher<Segmenter, Features, Weights, Clusterer>`: two occupancy grids → the transform
+/// between them, through the stages of `match/`:
+///
+///   features.hpp    per-area descriptors and costs (area size, passage distances, hull diameter)
+///   costs.hpp       weighted cost matrix, mutual k-nearest-neighbour area pairs
+///   raster.hpp      area-covered free space on coarse cells, for fast overlaps
+///   hypotheses.hpp  a transform per pair and segment match, filtered by the pair's overlap
+///   clusterer.hpp   angular (paper) or pose (default) clustering
+///   refine.hpp      trimmed ICP on the free-space boundaries
+///   result.hpp      MatchResult
+///
+/// Two configurations ship. `MatcherParams{}` is our default, chosen by measurement on real maps
+/// (ALGORITHM.md §7): k = 10, four turns per segment match, both segment sources, wall-direction
+/// hypotheses, whole-map verification of every cluster, ICP refinement. `PaperMatcher` is the
+/// paper as written: k = 3, one rotation per pair, OP ≥ 0.5 by polygon intersection, 3° angular
+/// clustering, the largest cluster's member with the highest Σ OP.
+///
+/// Each policy is a public member, so it can be tuned after construction:
+/// \code
+/// areamatch::Matcher<> matcher;                              // default policies and parameters
+/// matcher.segmenter.params.with_door_width(1.0);
+/// matcher.params.allow_reflection = true;
+/// areamatch::MatchResult result = matcher.match(source_grid, dest_grid);
+/// \endcode
+
+#include "area_graph.hpp"
+#include "error.hpp"
+#include "grid.hpp"
+#include "match/clusterer.hpp"
+#include "match/costs.hpp"
+#include "match/features.hpp"
+#include "match/hypotheses.hpp"
+#include "match/raster.hpp"
+#include "match/refine.hpp"
+#include "match/result.hpp"
+#include "segment/voronoi_segmenter.hpp"
+#include "segmenter.hpp"
+#include "transform.hpp"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numeric>
+#include <string>
+#include <utility>
+#include <vector>
+
+namespace areamatch {
+
+/// How a candidate transform is chosen among the clusters.
+enum class Selection : std::uint8_t {
+  largest_cluster,  ///< the paper: the largest cluster's member with the highest Σ OP over all pairs
+  whole_map         ///< ours: the best members of every cluster, scored by whole-map free-space IoU
+};
+
+struct MatcherParams {
+  /// Mutual k-nearest neighbours. The paper's 3 kept ~15 % of the true pairs on SLAM-to-layout
+  /// maps (ALGORITHM.md §7); 10 keeps ~42 %, and the verification stage rejects the rest.
+  std::size_t k = 10;
+  HypothesisParams hypotheses;
+  Selection selection = Selection::whole_map;
+  /// Also try the mirror image of the source (image rows run down, map y up: mirrored pairs are
+  /// common). Both sides are judged by the same score.
+  bool allow_reflection = false;
+
+  // Whole-map verification.
+  double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
+  double fine_cell_m = 0.1;             ///< raster cell for the finalists' score
+  std::size_t members_per_cluster = 3;  ///< best members of each cluster that get verified
+  std::size_t sparse_samples = 600;     ///< source cells of the first, cheap scoring pass
+  std::size_t verify_candidates = 48;   ///< candidates scored on every coarse cell
+  std::size_t refine_candidates = 8;    ///< candidates refined and scored on the fine raster
+  bool refine = true;
+  RefineParams refinement;
+  bool refine_on_free_edges = true;     ///< ICP on the maps' free-space edges (else the areas' edges)
+  /// The finalists' score: (1 − w) · free-space IoU + w · share of the source's free-space edge
+  /// within `wall_inlier_distance_m` of the destination's. IoU alone lets a map that extends past
+  /// the other slide along a corridor; edges pin room dividers.
+  double wall_score_weight = 0.5;
+  double wall_inlier_distance_m = 0.3;
+
+  // Decision.
+  /// Transforms closer than these (rotation, and displacement of the source's free-space
+  /// centroid) count as the same answer when the confidence margin is computed.
+  double different_rotation_rad = 3.0 * pi / 180.0;
+  double different_translation_m = 1.0;
+  /// Below this whole-map IoU the best transform is rejected (ok = false).
+  double min_score = 0.25;
+  /// Below this margin to a different or mirrored rival the result is called ambiguous.
+  double min_confidence = 0.0;
+  /// Area pairs overlapping at least this much under the result are reported as matched.
+  double min_matched_overlap = 0.5;
+
+  /// The paper as written (ALGORITHM.md §2): k = 3, one rotation per pair from the passage pair
+  /// (or hull diameters), exact OP ≥ 0.5, the largest 3° cluster, Σ OP; no refinement.
+  static MatcherParams paper() {
+    MatcherParams p;
+    p.k = 3;
+    p.hypotheses.extra_turns = {0.0};
+    p.hypotheses.all_segment_sources = false;
+    p.hypotheses.wall_directions = false;
+    p.hypotheses.min_area_overlap = 0.5;
+    p.hypotheses.exact_overlap = true;
+    p.selection = Selection::largest_cluster;
+    p.refine = false;
+    p.min_score = 0.0;          // the paper has no rejection rule:
+    p.min_confidence = -1.0;    // it always answers
+    return p;
+  }
+
+  void validate() const {
+    if (k < 1) throw parameter_error("MatcherParams::k must be >= 1");
+    hypotheses.validate();
+    detail::require_positive(coarse_cell_m, "MatcherParams::coarse_cell_m");
+    detail::require_positive(fine_cell_m, "MatcherParams::fine_cell_m");
+    if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1) {
+      throw parameter_error("MatcherParams: members_per_cluster, sparse_samples, verify_candidates and "
+                            "refine_candidates must be >= 1");
+    }
+    refinement.validate();
+    detail::require_positive(different_rotation_rad, "MatcherParams::different_rotation_rad");
+    detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");
+    detail::require_non_negative(min_score, "MatcherParams::min_score");
+    detail::require_non_negative(min_confidence, "MatcherParams::min_confidence");
+    detail::require_non_negative(min_matched_overlap, "MatcherParams::min_matched_overlap");
+  }
+};
+
+namespace detail {
+
+inline double seconds_since(std::chrono::steady_clock::time_point start) {
+  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// A transform with its whole-map score.
+struct ScoredTransform {
+  Similarity2 T;
+  double score = 0.0;
+};
+
+}  // namespace detail
+
+template <class Segmenter = VoronoiSegmenter, class Features = PaperFeatures, class Weights = PaperWeights,
+          class Clusterer = PoseClusterer>
+class Matcher {
+  static_assert(is_segmenter_v<Segmenter>,
+                "areamatch::Matcher: the Segmenter policy needs `areamatch::AreaGraph segment(const "
+                "areamatch::OccupancyGrid&) const` (see segmenter.hpp)");
+  static_assert(is_feature_set<Features>::value,
+                "areamatch::Matcher: the Features policy must be an areamatch::FeatureSet<F1, F2, ...> of feature "
+                "policies (see match/features.hpp)");
+  static_assert(is_weights_v<Weights, Features::size>,
+                "areamatch::Matcher: the Weights policy needs a member `std::array<double, N> values` with one "
+                "weight per feature of the FeatureSet, in its order (see match/costs.hpp)");
+  static_assert(is_clusterer_v<Clusterer>,
+                "areamatch::Matcher: the Clusterer policy needs `std::vector<areamatch::Cluster> cluster(const "
+                "std::vector<areamatch::Hypothesis>&) const` (see match/clusterer.hpp)");
+
+ public:
+  Segmenter segmenter;
+  Features features;
+  Weights weights;
+  Clusterer clusterer;
+  MatcherParams params;
+
+  Matcher() = default;
+  explicit Matcher(MatcherParams p) : params(std::move(p)) {}
+  Matcher(MatcherParams p, Segmenter s, Features f = {}, Weights w = {}, Clusterer c = {})
+      : segmenter(std::move(s)), features(std::move(f)), weights(std::move(w)), clusterer(std::move(c)),
+        params(std::move(p)) {}
+
+  /// Segments both grids with `segmenter` and matches them.
+  MatchResult match(const OccupancyGrid& source, const OccupancyGrid& dest) const {
+    const auto start = std::chrono::steady_clock::now();
+    const AreaGraph source_graph = segmenter.segment(source);
+    const double segment_source_s = detail::seconds_since(start);
+    const auto dest_start = std::chrono::steady_clock::now();
+    const AreaGraph dest_graph = segmenter.segment(dest);
+    const double segment_dest_s = detail::seconds_since(dest_start);
+    MatchResult result = match(source, source_graph, dest, dest_graph);
+    result.timings.segment_source_s = segment_source_s;
+    result.timings.segment_dest_s = segment_dest_s;
+    result.timings.total_s = detail::seconds_since(start);
+    return result;
+  }
+
+  /// Matches two maps already segmented (by anything, e.g. with a door width per map). Each graph
+  /// must come from its grid.
+  MatchResult match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
+                    const AreaGraph& dest_graph) const {
+    check_graph(source, source_graph, "source");
+    check_graph(dest, dest_graph, "destination");
+    return match_graphs(MapView{&source, &source_graph}, MapView{&dest, &dest_graph});
+  }
+
+ private:
+  struct MapView {
+    const OccupancyGrid* grid;
+    const AreaGraph* graph;
+  };
+
+  static void check_graph(const OccupancyGrid& grid, const AreaGraph& graph, const char* which) {
+    if (graph.grid.width != grid.width() || graph.grid.height != grid.height() ||
+        graph.labels.size() != grid.cells().size()) {
+      throw parameter_error(std::string("Matcher::match: the ") + which + " Area Graph was not made from the " + which +
+                            " grid (sizes differ)");
+    }
+  }
+
+  MatchResult match_graphs(const MapView& source_map, const MapView& dest_map) const {
+    const AreaGraph& source = *source_map.graph;
+    const AreaGraph& dest = *dest_map.graph;
+    params.validate();
+    const auto start = std::chrono::steady_clock::now();
+    MatchResult result;
+    result.statistics.source_areas = source.areas.size();
+    result.statistics.dest_areas = dest.areas.size();
+    auto finish = [&](std::string reason) {
+      result.ok = reason.empty();
+      result.reason = std::move(reason);
+      result.timings.match_s = detail::seconds_since(start);
+      result.timings.total_s = result.timings.match_s;
+      return result;
+    };
+    if (source.areas.empty()) return finish("the source map has no areas: " + source.reason);
+    if (dest.areas.empty()) return finish("the destination map has no areas: " + dest.reason);
+
+    // Features, costs and mutual pairs. They do not change under reflection: computed once.
+    auto stage = std::chrono::steady_clock::now();
+    const auto source_descriptors = features.describe(source);
+    const auto dest_descriptors = features.describe(dest);
+    const Eigen::MatrixXd cost = weighted_cost(features.costs(source_descriptors, dest_descriptors), weights.values);
+    const std::vector<AreaPair> pairs = mutual_nearest_pairs(cost, params.k);
+    result.statistics.mutual_pairs = pairs.size();
+    result.timings.features_s = detail::seconds_since(stage);
+
+    // Hypotheses on each side of the mirror.
+    stage = std::chrono::steady_clock::now();
+    const AreaRaster source_raster = make_area_raster(source, params.coarse_cell_m);
+    const AreaRaster dest_raster = make_area_raster(dest, params.coarse_cell_m);
+    HypothesisInputs inputs{&source, &dest, &source_raster, &dest_raster, 0.0, 0.0};
+    if (params.hypotheses.wall_directions) {
+      inputs.source_wall_direction = dominant_wall_direction(source);
+      inputs.dest_wall_direction = dominant_wall_direction(dest);
+    }
+    std::vector<Hypothesis> hypotheses;
+    for (bool reflected : sides()) {
+      for (const AreaPair& pair : pairs) {
+        const auto segments = features.segments(source_descriptors, dest_descriptors,
+                                                static_cast<std::size_t>(pair.source), static_cast<std::size_t>(pair.dest));
+        add_pair_hypotheses(inputs, pair, segments, reflected, params.hypotheses, hypotheses);
+      }
+    }
+    result.statistics.hypotheses = hypotheses.size();
+    result.timings.hypotheses_s = detail::seconds_since(stage);
+    if (hypotheses.empty()) {
+      return finish("no transform hypothesis: " + std::to_string(pairs.size()) +
+                    " mutual area pairs, none overlapping by at least " +
+                    std::to_string(params.hypotheses.min_area_overlap) + " under its own transform");
+    }
+
+    stage = std::chrono::steady_clock::now();
+    const std::vector<Cluster> clusters = clusterer.cluster(hypotheses);
+    result.statistics.clusters = clusters.size();
+    result.timings.clustering_s = detail::seconds_since(stage);
+
+    stage = std::chrono::steady_clock::now();
+    const AreaRaster source_fine = make_area_raster(source, params.fine_cell_m);
+    const AreaRaster dest_fine = make_area_raster(dest, params.fine_cell_m);
+    std::vector<detail::ScoredTransform> finalists;  // best first
+    if (params.selection == Selection::largest_cluster) {
+      finalists = select_largest_cluster(source, dest, source_raster, dest_raster, pairs, hypotheses, clusters, result);
+    } else {
+      finalists = select_whole_map(source_map, dest_map, source_raster, dest_raster, source_fine, dest_fine,
+                                   hypotheses, clusters, result);
+    }
+    result.timings.selection_s = detail::seconds_since(stage);
+    if (finalists.empty()) return finish("no cluster survived the selection");
+
+    const detail::ScoredTransform& best = finalists.front();
+    result.T_dest_source = best.T;
+    result.pixel_transform = to_pixel_transform(best.T, source.grid, dest.grid);
+    result.score = best.score;
+    compute_margins(source_fine, dest_fine, finalists, result);
+    result.matched_areas = matched_areas(source, dest, source_fine, dest_fine, best.T);
+
+    if (params.selection == Selection::whole_map && result.score < params.min_score) {
+      return finish("best whole-map overlap (IoU " + std::to_string(result.score) + ") is below min_score " +
+                    std::to_string(params.min_score) + ": the maps do not match");
+    }
+    if (result.confidence < params.min_confidence) {
+      return finish("ambiguous: a different transform scores within " + std::to_string(result.confidence) +
+                    " of the best (min_confidence " + std::to_string(params.min_confidence) + ")");
+    }
+    return finish("");
+  }
+
+  std::vector<bool> sides() const {
+    return params.allow_reflection ? std::vector<bool>{false, true} : std::vector<bool>{false};
+  }
+
+  /// The paper: on each side of the mirror, the largest cluster's member with the highest
+  /// Σ OP over all mutual pairs; the sides compare by that Σ OP. Also returns the first member of
+  /// every other cluster (scored by Σ OP too) so the margins can be computed.
+  std::vector<detail::ScoredTransform> select_largest_cluster(const AreaGraph& source, const AreaGraph& dest,
+                                                              const AreaRaster& source_raster,
+                                                              const AreaRaster& dest_raster,
+                                                              const std::vector<AreaPair>& pairs,
+                                                              const std::vector<Hypothesis>& hypotheses,
+                                                              const std::vector<Cluster>& clusters,
+                                                              MatchResult& result) const {
+    auto total_overlap = [&](const Similarity2& T) {
+      double sum = 0.0;
+      for (const AreaPair& pair : pairs) {
+        const Area& a = source.areas[static_cast<std::size_t>(pair.source)];
+        const Area& b = dest.areas[static_cast<std::size_t>(pair.dest)];
+        sum += params.hypotheses.exact_overlap
+                   ? detail::exact_area_overlap(a, b, T)
+                   : raster_area_overlap(source_raster, dest_raster, pair.source, pair.dest, a.size_m2, b.size_m2, T);
+      }
+      return sum;
+    };
+    std::vector<detail::ScoredTransform> chosen;   // the best of each side's largest cluster
+    std::vector<detail::ScoredTransform> others;   // first members of the other clusters
+    for (bool side : sides()) {
+      bool first = true;
+      for (const Cluster& cluster : clusters) {
+        if (hypotheses[static_cast<std::size_t>(cluster.members.front())].T_dest_source.reflected != side) continue;
+        if (first) {
+          first = false;
+          detail::ScoredTransform best{{}, -1.0};
+          for (int m : cluster.members) {
+            const Similarity2& T = hypotheses[static_cast<std::size_t>(m)].T_dest_source;
+            const double s = total_overlap(T);
+            ++result.statistics.verified;
+            if (s > best.score) best = {T, s};
+          }
+          chosen.push_back(best);
+        } else {
+          const Similarity2& T = hypotheses[static_cast<std::size_t>(cluster.members.front())].T_dest_source;
+          others.push_back({T, -1.0});  // scored by IoU in compute_margins only
+        }
+      }
+    }
+    std::stable_sort(chosen.begin(), chosen.end(),
+                     [](const auto& a, const auto& b) { return a.score > b.score; });
+    chosen.insert(chosen.end(), others.begin(), others.end());
+    return chosen;
+  }
+
+  /// Ours: the best members of every cluster, scored by whole-map IoU on a sparse then a full
+  /// coarse raster; the best few refined by ICP and scored on the fine raster. The answer is the
+  /// best of those, whatever cluster it came from.
+  std::vector<detail::ScoredTransform> select_whole_map(const MapView& source, const MapView& dest,
+                                                        const AreaRaster& source_raster, const AreaRaster& dest_raster,
+                                                        const AreaRaster& source_fine, const AreaRaster& dest_fine,
+                                                        const std::vector<Hypothesis>& hypotheses,
+                                                        const std::vector<Cluster>& clusters,
+                                                        MatchResult& result) const {
+    std::vector<detail::ScoredTransform> candidates;
+    for (const Cluster& cluster : clusters) {
+      for (std::size_t m = 0; m < std::min(params.members_per_cluster, cluster.members.size()); ++m) {
+        candidates.push_back({hypotheses[static_cast<std::size_t>(cluster.members[m])].T_dest_source, 0.0});
+      }
+    }
+    auto by_score = [](const detail::ScoredTransform& a, const detail::ScoredTransform& b) { return a.score > b.score; };
+    // Pass 1: a few hundred source cells each.
+    const std::size_t stride = std::max<std::size_t>(1, source_raster.labelled_count() / params.sparse_samples);
+    for (auto& c : candidates) c.score = free_space_iou(source_raster, dest_raster, c.T, stride);
+    std::stable_sort(candidates.begin(), candidates.end(), by_score);
+    if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
+    // Pass 2: every coarse cell.
+    for (auto& c : candidates) c.score = free_space_iou(source_raster, dest_raster, c.T);
+    result.statistics.verified = candidates.size();
+    std::stable_sort(candidates.begin(), candidates.end(), by_score);
+
+    // Finalists: the best few, plus the best on the other side of the mirror and the best clearly
+    // different transform, so that the confidence margins compare refined with refined.
+    std::vector<detail::ScoredTransform> finalists;
+    auto add_finalist = [&](const detail::ScoredTransform& c) {
+      for (const auto& f : finalists) {
+        if (!different(f.T, c.T, source_raster)) return;
+      }
+      finalists.push_back(c);
+    };
+    for (const auto& c : candidates) {
+      if (finalists.size() >= params.refine_candidates) break;
+      add_finalist(c);
+    }
+    for (const auto& c : candidates) {
+      if (c.T.reflected != candidates.front().T.reflected) { add_finalist(c); break; }
+    }
+
+    stage_refine(source, dest, source_fine, dest_fine, finalists, result);
+    std::stable_sort(finalists.begin(), finalists.end(), by_score);
+    return finalists;
+  }
+
+  /// Refines the finalists by ICP and scores them: a blend of the fine free-space IoU and the
+  /// share of the source's free-space edge that lies on the destination's.
+  void stage_refine(const MapView& source, const MapView& dest, const AreaRaster& source_fine,
+                    const AreaRaster& dest_fine, std::vector<detail::ScoredTransform>& finalists,
+                    MatchResult& result) const {
+    const std::vector<Eigen::Vector2d> edge = detail::free_boundary_points(
+        *source.grid, source.graph->grid, params.refinement.point_spacing_m,
+        static_cast<std::size_t>(params.refinement.max_points));
+    const BoundaryLookup dest_edge(
+        detail::free_boundary_points(*dest.grid, dest.graph->grid, 0.5 * params.refinement.lookup_cell_m),
+        params.refinement.lookup_cell_m, params.refinement.gates_m.front());
+    if (params.refine) {
+      const std::vector<Eigen::Vector2d>& points = params.refine_on_free_edges ? edge : detail::boundary_points(
+          source.graph->grid, [&](std::size_t i) { return source.graph->labels[i] >= 0; },
+          params.refinement.point_spacing_m, static_cast<std::size_t>(params.refinement.max_points));
+      const BoundaryLookup lookup = params.refine_on_free_edges ? dest_edge : BoundaryLookup(detail::boundary_points(
+          dest.graph->grid, [&](std::size_t i) { return dest.graph->labels[i] >= 0; }, 0.5 * params.refinement.lookup_cell_m),
+          params.refinement.lookup_cell_m, params.refinement.gates_m.front());
+      for (auto& f : finalists) f.T = refine_icp(points, lookup, f.T, params.refinement);
+      result.statistics.refined = finalists.size();
+    }
+    for (auto& f : finalists) {
+      const double iou = free_space_iou(source_fine, dest_fine, f.T);
+      const double walls = boundary_inlier_fraction(edge, dest_edge, f.T, params.wall_inlier_distance_m);
+      f.score = (1.0 - params.wall_score_weight) * iou + params.wall_score_weight * walls;
+    }
+  }
+
+  /// Whether two transforms are clearly different answers: another side of the mirror, a
+  /// rotation apart, or the source's free-space centroid lands apart.
+  bool different(const Similarity2& a, const Similarity2& b, const AreaRaster& source_raster) const {
+    if (a.reflected != b.reflected) return true;
+    if (std::abs(wrap_angle(a.rotation - b.rotation)) > params.different_rotation_rad) return true;
+    Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+    for (const auto& c : source_raster.centres) centroid += c;
+    if (!source_raster.centres.empty()) centroid /= static_cast<double>(source_raster.centres.size());
+    return ((a * centroid) - (b * centroid)).norm() > params.different_translation_m;
+  }
+
+  /// Margins of the best finalist (IoU on the fine raster) over the best clearly different one and
+  /// the best mirrored one.
+  void compute_margins(const AreaRaster& source_fine, const AreaRaster& dest_fine,
+                       const std::vector<detail::ScoredTransform>& finalists, MatchResult& result) const {
+    const Similarity2& best = finalists.front().T;
+    const double best_iou = free_space_iou(source_fine, dest_fine, best);
+    double rival_different = -1.0, rival_mirrored = -1.0;
+    for (std::size_t i = 1; i < finalists.size(); ++i) {
+      const Similarity2& T = finalists[i].T;
+      const double iou = params.selection == Selection::whole_map ? finalists[i].score
+                                                                  : free_space_iou(source_fine, dest_fine, T);
+      if (T.reflected != best.reflected) rival_mirrored = std::max(rival_mirrored, iou);
+      else if (different(best, T, source_fine)) rival_different = std::max(rival_different, iou);
+    }
+    if (rival_different >= 0.0) result.margin_different = best_iou - rival_different;
+    if (params.allow_reflection && rival_mirrored >= 0.0) result.margin_mirrored = best_iou - rival_mirrored;
+    double confidence = best_iou;
+    if (!std::isnan(result.margin_different)) confidence = std::min(confidence, result.margin_different);
+    if (!std::isnan(result.margin_mirrored)) confidence = std::min(confidence, result.margin_mirrored);
+    result.confidence = confidence;
+  }
+
+  /// Every source area with the destination area most of it lands on, when they overlap enough.
+  std::vector<MatchedAreaPair> matched_areas(const AreaGraph& source, const AreaGraph& dest,
+                                             const AreaRaster& source_fine, const AreaRaster& dest_fine,
+                                             const Similarity2& T) const {
+    std::vector<MatchedAreaPair> out;
+    const Eigen::Affine2d to_cell = dest_fine.cell_from_world * T.affine();
+    std::vector<int> counts(dest.areas.size(), 0);
+    for (std::size_t i = 0; i < source.areas.size(); ++i) {
+      std::fill(counts.begin(), counts.end(), 0);
+      for (int index : source_fine.area_cells[i]) {
+        const int label = dest_fine.label_at_cell(to_cell * source_fine.centres[static_cast<std::size_t>(index)]);
+        if (label >= 0) ++counts[static_cast<std::size_t>(label)];
+      }
+      const auto it = std::max_element(counts.begin(), counts.end());
+      if (it == counts.end() || *it == 0) continue;
+      const int j = static_cast<int>(it - counts.begin());
+      const double denominator = std::min(source.areas[i].size_m2, dest.areas[static_cast<std::size_t>(j)].size_m2);
+      const double overlap = denominator > 0.0 ? std::min(1.0, *it * source_fine.cell_area() / denominator) : 0.0;
+      if (overlap >= params.min_matched_overlap) out.push_back({static_cast<int>(i), j, overlap});
+    }
+    return out;
+  }
+};
+
+/// The paper's matcher as written (see `MatcherParams::paper()`).
+class PaperMatcher : public Matcher<VoronoiSegmenter, PaperFeatures, PaperWeights, AngularClusterer> {
+ public:
+  PaperMatcher() : Matcher(MatcherParams::paper()) {}
+  explicit PaperMatcher(MatcherParams p) : Matcher(std::move(p)) {}
+};
+
+}  // namespace areamatch
