@@ -125,3 +125,53 @@ TEST_CASE("bad input: exit status 2 and a message naming the problem") {
   // A valid bare image with a resolution override works.
   CHECK(run("info " + dir + "/cli_ok.pgm --resolution 0.1").status == 0);
 }
+
+TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
+  const std::string dir = areamatch_test::temp_dir() + "/match_pair";
+  REQUIRE(run("generate " + dir + " --seed 5 --width 20 --height 14 --rotation 75 --mirror").status == 0);
+  const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
+  // stdout alone must be exactly one JSON object.
+  const std::string command = std::string(AREAMATCH_CLI) + " match " + pair + " --allow-reflection --json 2>/dev/null";
+  FILE* pipe = ::popen(command.c_str(), "r");
+  REQUIRE(pipe != nullptr);
+  std::string out;
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
+  const int raw = ::pclose(pipe);
+  CHECK(WEXITSTATUS(raw) == 0);
+  CHECK(out.rfind("{\"ok\": true", 0) == 0);
+  CHECK(out.find('\n') == out.size() - 1);
+  for (const char* key : {"\"rotation_deg\"", "\"translation_m\"", "\"scale\"", "\"reflected\": true", "\"pixel_transform\"",
+                          "\"score\"", "\"confidence\"", "\"matched_areas\"", "\"segment_source_s\"", "\"segment_dest_s\"",
+                          "\"match_s\"", "\"total_s\""}) {
+    CHECK_MESSAGE(out.find(key) != std::string::npos, key);
+  }
+  const Run pictures = run("match " + pair + " --allow-reflection --png " + dir + "/m.png --svg " + dir + "/m.svg");
+  CHECK(pictures.status == 0);
+  CHECK(pictures.out.find("matched: rotation") != std::string::npos);
+  CHECK(areamatch::detail::read_file_bytes(dir + "/m.png").size() > 0);
+  CHECK(areamatch::detail::read_file_bytes(dir + "/m.svg").size() > 0);
+  CHECK(run("match " + pair + " --paper --door-width 1.1").status <= 1);
+}
+
+TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match exits 1") {
+  const std::string dir = areamatch_test::temp_dir() + "/match_bad";
+  REQUIRE(run("generate " + dir + " --seed 6 --width 16 --height 12").status == 0);
+  const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
+  for (const std::string& bad : {std::string("--source-resolution 0"), std::string("--dest-resolution -1"),
+                                 std::string("--source-resolution nan"), std::string("--dest-resolution abc"),
+                                 std::string("--door-width 1 --source-door-width 1"), std::string("--k 0")}) {
+    const Run r = run("match " + pair + " " + bad);
+    CHECK_MESSAGE(r.status == 2, bad);
+    CHECK_MESSAGE(!r.out.empty(), bad);
+  }
+  CHECK(run("match " + dir + "/robot.yaml").status == 2);
+  CHECK(run("match " + dir + "/missing.yaml " + dir + "/layout.yaml").status == 2);
+  // An all-wall map segments into nothing: a clear refusal, exit 1, JSON still on stdout.
+  areamatch::GreyImage walls(40, 40, 255, 0);
+  areamatch::write_image(dir + "/walls.png", walls);
+  const Run none = run("match " + dir + "/walls.png " + dir + "/layout.yaml --json");
+  CHECK(none.status == 1);
+  CHECK(none.out.find("\"ok\": false") != std::string::npos);
+  CHECK(none.out.find("no areas") != std::string::npos);
+}

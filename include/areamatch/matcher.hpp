@@ -45,6 +45,7 @@
 #include <cstddef>
 #include <limits>
 #include <numeric>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -69,9 +70,9 @@ struct MatcherParams {
 
   // Whole-map verification.
   double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
-  double fine_cell_m = 0.1;             ///< raster cell for the finalists' score
-  std::size_t members_per_cluster = 3;  ///< best members of each cluster that get verified
-  std::size_t sparse_samples = 600;     ///< source cells of the first, cheap scoring pass
+  double fine_cell_m = 0.25;            ///< raster cell for the finalists' IoU (0.1 measured no better)
+  std::size_t members_per_cluster = 1;  ///< best members of each cluster that get verified
+  std::size_t sparse_samples = 300;     ///< source cells of the first, cheap scoring pass
   std::size_t verify_candidates = 48;   ///< candidates scored on every coarse cell
   std::size_t refine_candidates = 8;    ///< candidates refined and scored on the fine raster
   bool refine = true;
@@ -80,7 +81,7 @@ struct MatcherParams {
   /// The finalists' score: (1 − w) · free-space IoU + w · share of the source's free-space edge
   /// within `wall_inlier_distance_m` of the destination's. IoU alone lets a map that extends past
   /// the other slide along a corridor; edges pin room dividers.
-  double wall_score_weight = 0.5;
+  double wall_score_weight = 1.0;
   double wall_inlier_distance_m = 0.3;
 
   // Decision.
@@ -90,8 +91,12 @@ struct MatcherParams {
   double different_translation_m = 1.0;
   /// Below this whole-map IoU the best transform is rejected (ok = false).
   double min_score = 0.25;
-  /// Below this margin to a different or mirrored rival the result is called ambiguous.
+  /// Below this margin to a different or mirrored rival the result is rejected (ok = false).
   double min_confidence = 0.0;
+  /// Below this margin the result is flagged `ambiguous` (still ok): on real maps correct answers
+  /// have come with margins as small as 0.002 (a SLAM map longer than its layout slides along
+  /// the corridor), so rejecting them is the caller's call.
+  double ambiguity_margin = 0.02;
   /// Area pairs overlapping at least this much under the result are reported as matched.
   double min_matched_overlap = 0.5;
 
@@ -125,8 +130,9 @@ struct MatcherParams {
     detail::require_positive(different_rotation_rad, "MatcherParams::different_rotation_rad");
     detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");
     detail::require_non_negative(min_score, "MatcherParams::min_score");
-    detail::require_non_negative(min_confidence, "MatcherParams::min_confidence");
+    if (!std::isfinite(min_confidence)) throw parameter_error("MatcherParams::min_confidence must be finite");
     detail::require_non_negative(min_matched_overlap, "MatcherParams::min_matched_overlap");
+    detail::require_non_negative(ambiguity_margin, "MatcherParams::ambiguity_margin");
   }
 };
 
@@ -269,8 +275,14 @@ class Matcher {
     result.timings.clustering_s = detail::seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    const AreaRaster source_fine = make_area_raster(source, params.fine_cell_m);
-    const AreaRaster dest_fine = make_area_raster(dest, params.fine_cell_m);
+    // The finalists' rasters; the coarse ones again when the cell sizes agree.
+    std::optional<AreaRaster> source_fine_own, dest_fine_own;
+    if (params.fine_cell_m != params.coarse_cell_m) {
+      source_fine_own = make_area_raster(source, params.fine_cell_m);
+      dest_fine_own = make_area_raster(dest, params.fine_cell_m);
+    }
+    const AreaRaster& source_fine = source_fine_own ? *source_fine_own : source_raster;
+    const AreaRaster& dest_fine = dest_fine_own ? *dest_fine_own : dest_raster;
     std::vector<detail::ScoredTransform> finalists;  // best first
     if (params.selection == Selection::largest_cluster) {
       finalists = select_largest_cluster(source, dest, source_raster, dest_raster, pairs, hypotheses, clusters, result);
@@ -292,6 +304,7 @@ class Matcher {
       return finish("best whole-map overlap (IoU " + std::to_string(result.score) + ") is below min_score " +
                     std::to_string(params.min_score) + ": the maps do not match");
     }
+    result.ambiguous = result.confidence < params.ambiguity_margin;
     if (result.confidence < params.min_confidence) {
       return finish("ambiguous: a different transform scores within " + std::to_string(result.confidence) +
                     " of the best (min_confidence " + std::to_string(params.min_confidence) + ")");
@@ -381,9 +394,10 @@ class Matcher {
     // Finalists: the best few, plus the best on the other side of the mirror and the best clearly
     // different transform, so that the confidence margins compare refined with refined.
     std::vector<detail::ScoredTransform> finalists;
+    const Eigen::Vector2d centroid = centroid_of(source_raster);
     auto add_finalist = [&](const detail::ScoredTransform& c) {
       for (const auto& f : finalists) {
-        if (!different(f.T, c.T, source_raster)) return;
+        if (!different(f.T, c.T, centroid)) return;
       }
       finalists.push_back(c);
     };
@@ -406,19 +420,25 @@ class Matcher {
                     const AreaRaster& dest_fine, std::vector<detail::ScoredTransform>& finalists,
                     MatchResult& result) const {
     const std::vector<Eigen::Vector2d> edge = detail::free_boundary_points(
-        *source.grid, source.graph->grid, params.refinement.point_spacing_m,
+        *source.grid, *source.graph, params.refinement.point_spacing_m,
         static_cast<std::size_t>(params.refinement.max_points));
     const BoundaryLookup dest_edge(
-        detail::free_boundary_points(*dest.grid, dest.graph->grid, 0.5 * params.refinement.lookup_cell_m),
+        detail::free_boundary_points(*dest.grid, *dest.graph, 0.5 * params.refinement.lookup_cell_m),
         params.refinement.lookup_cell_m, params.refinement.gates_m.front());
     if (params.refine) {
-      const std::vector<Eigen::Vector2d>& points = params.refine_on_free_edges ? edge : detail::boundary_points(
-          source.graph->grid, [&](std::size_t i) { return source.graph->labels[i] >= 0; },
-          params.refinement.point_spacing_m, static_cast<std::size_t>(params.refinement.max_points));
-      const BoundaryLookup lookup = params.refine_on_free_edges ? dest_edge : BoundaryLookup(detail::boundary_points(
-          dest.graph->grid, [&](std::size_t i) { return dest.graph->labels[i] >= 0; }, 0.5 * params.refinement.lookup_cell_m),
-          params.refinement.lookup_cell_m, params.refinement.gates_m.front());
-      for (auto& f : finalists) f.T = refine_icp(points, lookup, f.T, params.refinement);
+      const std::vector<Eigen::Vector2d>* points = &edge;
+      const BoundaryLookup* lookup = &dest_edge;
+      std::vector<Eigen::Vector2d> area_points;
+      BoundaryLookup area_lookup;
+      if (!params.refine_on_free_edges) {
+        area_points = detail::area_boundary_points(*source.graph, params.refinement.point_spacing_m,
+                                                   static_cast<std::size_t>(params.refinement.max_points));
+        area_lookup = BoundaryLookup(detail::area_boundary_points(*dest.graph, 0.5 * params.refinement.lookup_cell_m),
+                                     params.refinement.lookup_cell_m, params.refinement.gates_m.front());
+        points = &area_points;
+        lookup = &area_lookup;
+      }
+      for (auto& f : finalists) f.T = refine_icp(*points, *lookup, f.T, params.refinement);
       result.statistics.refined = finalists.size();
     }
     for (auto& f : finalists) {
@@ -430,13 +450,16 @@ class Matcher {
 
   /// Whether two transforms are clearly different answers: another side of the mirror, a
   /// rotation apart, or the source's free-space centroid lands apart.
-  bool different(const Similarity2& a, const Similarity2& b, const AreaRaster& source_raster) const {
+  bool different(const Similarity2& a, const Similarity2& b, const Eigen::Vector2d& source_centroid) const {
     if (a.reflected != b.reflected) return true;
     if (std::abs(wrap_angle(a.rotation - b.rotation)) > params.different_rotation_rad) return true;
+    return ((a * source_centroid) - (b * source_centroid)).norm() > params.different_translation_m;
+  }
+
+  static Eigen::Vector2d centroid_of(const AreaRaster& raster) {
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-    for (const auto& c : source_raster.centres) centroid += c;
-    if (!source_raster.centres.empty()) centroid /= static_cast<double>(source_raster.centres.size());
-    return ((a * centroid) - (b * centroid)).norm() > params.different_translation_m;
+    for (const auto& c : raster.centres) centroid += c;
+    return raster.centres.empty() ? centroid : Eigen::Vector2d(centroid / static_cast<double>(raster.centres.size()));
   }
 
   /// Margins of the best finalist (IoU on the fine raster) over the best clearly different one and
@@ -444,14 +467,18 @@ class Matcher {
   void compute_margins(const AreaRaster& source_fine, const AreaRaster& dest_fine,
                        const std::vector<detail::ScoredTransform>& finalists, MatchResult& result) const {
     const Similarity2& best = finalists.front().T;
-    const double best_iou = free_space_iou(source_fine, dest_fine, best);
+    // Compare like with like: the finalists' own score in our selection; IoU for the paper's,
+    // whose Σ OP is not comparable between transforms of different clusters.
+    const double best_iou = params.selection == Selection::whole_map ? finalists.front().score
+                                                                     : free_space_iou(source_fine, dest_fine, best);
     double rival_different = -1.0, rival_mirrored = -1.0;
+    const Eigen::Vector2d centroid = centroid_of(source_fine);
     for (std::size_t i = 1; i < finalists.size(); ++i) {
       const Similarity2& T = finalists[i].T;
       const double iou = params.selection == Selection::whole_map ? finalists[i].score
                                                                   : free_space_iou(source_fine, dest_fine, T);
       if (T.reflected != best.reflected) rival_mirrored = std::max(rival_mirrored, iou);
-      else if (different(best, T, source_fine)) rival_different = std::max(rival_different, iou);
+      else if (different(best, T, centroid)) rival_different = std::max(rival_different, iou);
     }
     if (rival_different >= 0.0) result.margin_different = best_iou - rival_different;
     if (params.allow_reflection && rival_mirrored >= 0.0) result.margin_mirrored = best_iou - rival_mirrored;

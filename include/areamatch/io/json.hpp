@@ -94,7 +94,8 @@ inline std::string match_result_json(const MatchResult& r) {
   out += ", \"scale\": " + json_number(T.scale) + ", \"reflected\": " + (T.reflected ? "true" : "false");
   out += ", \"pixel_transform\": [[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) +
          "], [" + json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
-  out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence);
+  out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence) +
+         ", \"ambiguous\": " + (r.ambiguous ? "true" : "false");
   out += ", \"margin_different\": " + json_number(r.margin_different) +
          ", \"margin_mirrored\": " + json_number(r.margin_mirrored);
   out += ", \"matched_areas\": [";

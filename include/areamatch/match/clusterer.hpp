@@ -189,16 +189,35 @@ struct PoseClusterer {
     std::vector<int> rank(hypotheses.size());
     for (std::size_t r = 0; r < order.size(); ++r) rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
     std::vector<Cluster> clusters;
+    // Clusters indexed by (mirror side, rotation bin of the leader): a hypothesis only compares
+    // with leaders in its own and the two neighbouring bins, so thousands of hypotheses cluster
+    // in linear time. A bin is at least the rotation tolerance wide, so no match is missed.
+    const int bins = std::max(1, static_cast<int>(2.0 * pi / params.rotation_rad));
+    auto bin_of = [&](double rotation) {
+      return std::min(bins - 1, static_cast<int>((wrap_angle(rotation) + pi) / (2.0 * pi) * bins));
+    };
+    std::vector<std::vector<int>> by_bin(2 * static_cast<std::size_t>(bins));
     for (int i : order) {
       const Similarity2& T = hypotheses[static_cast<std::size_t>(i)].T_dest_source;
-      auto same = [&](const Cluster& c) {
-        const Similarity2& L = hypotheses[static_cast<std::size_t>(c.members.front())].T_dest_source;
-        return L.reflected == T.reflected && std::abs(wrap_angle(L.rotation - T.rotation)) <= params.rotation_rad &&
-               (L.translation - T.translation).norm() <= params.translation_m;
-      };
-      auto it = std::find_if(clusters.begin(), clusters.end(), same);
-      if (it == clusters.end()) clusters.push_back({{i}, T.rotation, 0.0});
-      else it->members.push_back(i);
+      const int side = T.reflected ? bins : 0;
+      const int bin = bin_of(T.rotation);
+      int found = -1;
+      for (int d = -1; d <= 1; ++d) {
+        for (int c : by_bin[static_cast<std::size_t>(side + (bin + d + bins) % bins)]) {
+          const Similarity2& L = hypotheses[static_cast<std::size_t>(clusters[static_cast<std::size_t>(c)].members.front())].T_dest_source;
+          if (std::abs(wrap_angle(L.rotation - T.rotation)) <= params.rotation_rad &&
+              (L.translation - T.translation).norm() <= params.translation_m) {
+            // The first leader in cluster order wins, whichever bin it is in.
+            if (found < 0 || c < found) found = c;
+          }
+        }
+      }
+      if (found < 0) {
+        by_bin[static_cast<std::size_t>(side + bin)].push_back(static_cast<int>(clusters.size()));
+        clusters.push_back({{i}, T.rotation, 0.0});
+      } else {
+        clusters[static_cast<std::size_t>(found)].members.push_back(i);
+      }
     }
     detail::finish_clusters(hypotheses, rank, clusters);
     std::stable_sort(clusters.begin(), clusters.end(),

@@ -20,6 +20,36 @@
 
 namespace areamatch {
 
+/// A half-open pixel rectangle [col0, col1) × [row0, row1).
+struct PixelBounds {
+  int col0 = 0, row0 = 0, col1 = 0, row1 = 0;
+  bool empty() const { return col1 <= col0 || row1 <= row0; }
+};
+
+/// The pixels that can hold an area: the envelope of the area polygons, grown by `margin` pixels
+/// and clipped to the grid. Scans over the labels stay inside it, so a building in a corner of a
+/// huge image costs what the building costs.
+inline PixelBounds label_bounds(const AreaGraph& graph, int margin = 2) {
+  const GridInfo& g = graph.grid;
+  PixelBounds b{g.width, g.height, 0, 0};
+  const Eigen::Affine2d pixel_from_world = g.world_from_pixel().inverse();
+  for (const Area& area : graph.areas) {
+    for (const auto& p : area.polygon.outer()) {
+      const Eigen::Vector2d q = pixel_from_world * to_vector(p);
+      b.col0 = std::min(b.col0, static_cast<int>(std::floor(q.x())) - margin);
+      b.row0 = std::min(b.row0, static_cast<int>(std::floor(q.y())) - margin);
+      b.col1 = std::max(b.col1, static_cast<int>(std::ceil(q.x())) + margin + 1);
+      b.row1 = std::max(b.row1, static_cast<int>(std::ceil(q.y())) + margin + 1);
+    }
+  }
+  b.col0 = std::max(0, b.col0);
+  b.row0 = std::max(0, b.row0);
+  b.col1 = std::min(g.width, b.col1);
+  b.row1 = std::min(g.height, b.row1);
+  if (b.empty()) b = {0, 0, 0, 0};
+  return b;
+}
+
 /// The areas of one map resampled onto cells of side `cell_m`. A cell belongs to the area that
 /// holds most of its map cells, and to none when less than half of it is in some area.
 struct AreaRaster {
@@ -54,14 +84,16 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
   const std::size_t expected = static_cast<std::size_t>(g.width) * static_cast<std::size_t>(g.height);
   if (graph.labels.size() != expected) throw parameter_error("area raster: the graph's labels do not match its grid");
   const double factor = cell_m / g.resolution;  // map cells per raster cell, along one side
+  const PixelBounds bounds = label_bounds(graph);
   AreaRaster r;
   r.cell_m = cell_m;
-  r.width = std::max(1, static_cast<int>(std::ceil(g.width / factor)));
-  r.height = std::max(1, static_cast<int>(std::ceil(g.height / factor)));
-  // Pixel (c, row) covers continuous pixel coordinates [c − ½, c + ½]; raster u = (c + ½) / factor.
+  r.width = std::max(1, static_cast<int>(std::ceil((bounds.col1 - bounds.col0) / factor)));
+  r.height = std::max(1, static_cast<int>(std::ceil((bounds.row1 - bounds.row0) / factor)));
+  // Pixel (c, row) covers continuous pixel coordinates [c − ½, c + ½]; the raster starts at the
+  // bounds' corner: u = (c − col0 + ½) / factor.
   Eigen::Affine2d cell_from_pixel = Eigen::Affine2d::Identity();
   cell_from_pixel.linear() = Eigen::Matrix2d::Identity() / factor;
-  cell_from_pixel.translation() = Eigen::Vector2d::Constant(0.5 / factor);
+  cell_from_pixel.translation() = Eigen::Vector2d(0.5 - bounds.col0, 0.5 - bounds.row0) / factor;
   r.cell_from_world = cell_from_pixel * g.world_from_pixel().inverse();
   const Eigen::Affine2d world_from_cell = r.cell_from_world.inverse();
 
@@ -69,20 +101,24 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
   r.area_cells.resize(graph.areas.size());
   std::vector<std::pair<int, int>> votes;  // (area id, map cells) within one raster cell
   for (int row = 0; row < r.height; ++row) {
-    const int row0 = static_cast<int>(std::ceil(row * factor - 0.5));
-    const int row1 = std::min(g.height, static_cast<int>(std::ceil((row + 1) * factor - 0.5)));
+    const int row0 = bounds.row0 + static_cast<int>(std::ceil(row * factor - 0.5));
+    const int row1 = std::min(bounds.row1, bounds.row0 + static_cast<int>(std::ceil((row + 1) * factor - 0.5)));
     for (int col = 0; col < r.width; ++col) {
-      const int col0 = static_cast<int>(std::ceil(col * factor - 0.5));
-      const int col1 = std::min(g.width, static_cast<int>(std::ceil((col + 1) * factor - 0.5)));
+      const int col0 = bounds.col0 + static_cast<int>(std::ceil(col * factor - 0.5));
+      const int col1 = std::min(bounds.col1, bounds.col0 + static_cast<int>(std::ceil((col + 1) * factor - 0.5)));
       votes.clear();
       int cells = 0, labelled = 0;
-      for (int y = std::max(0, row0); y < row1; ++y) {
-        for (int x = std::max(0, col0); x < col1; ++x) {
+      for (int y = std::max(bounds.row0, row0); y < row1; ++y) {
+        for (int x = std::max(bounds.col0, col0); x < col1; ++x) {
           ++cells;
           const int label = graph.labels[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) +
                                          static_cast<std::size_t>(x)];
           if (label < 0) continue;
           ++labelled;
+          if (!votes.empty() && votes.back().first == label) {  // the usual case: same as the last one
+            ++votes.back().second;
+            continue;
+          }
           auto it = std::find_if(votes.begin(), votes.end(), [&](const auto& v) { return v.first == label; });
           if (it == votes.end()) votes.emplace_back(label, 1);
           else ++it->second;
@@ -134,17 +170,24 @@ inline double free_space_iou(const AreaRaster& source, const AreaRaster& dest, c
   return union_cells > 0.0 ? std::clamp(hits * scale2 / union_cells, 0.0, 1.0) : 0.0;
 }
 
-/// The paper's overlap percentage OP = area(T(P_i) ∩ P_j) / min(a_i, a_j), counted on the rasters.
+/// The paper's overlap percentage OP = area(T(P_i) ∩ P_j) / min(a_i, a_j), counted on the rasters
+/// from at most `max_samples` of the source area's cells.
 inline double raster_area_overlap(const AreaRaster& source, const AreaRaster& dest, int source_area, int dest_area,
-                                  double source_size_m2, double dest_size_m2, const Similarity2& T_dest_source) {
+                                  double source_size_m2, double dest_size_m2, const Similarity2& T_dest_source,
+                                  std::size_t max_samples = 128) {
   const double denominator = std::min(source_size_m2, dest_size_m2);
   if (!(denominator > 0.0)) return 0.0;
   const Eigen::Affine2d to_cell = dest.cell_from_world * T_dest_source.affine();
-  std::size_t hits = 0;
-  for (int index : source.area_cells[static_cast<std::size_t>(source_area)]) {
-    if (dest.label_at_cell(to_cell * source.centres[static_cast<std::size_t>(index)]) == dest_area) ++hits;
+  const auto& cells = source.area_cells[static_cast<std::size_t>(source_area)];
+  // An estimate from evenly spread cells is plenty for a filter; large corridors would dominate.
+  const std::size_t stride = std::max<std::size_t>(1, (cells.size() + max_samples - 1) / std::max<std::size_t>(1, max_samples));
+  std::size_t hits = 0, samples = 0;
+  for (std::size_t k = 0; k < cells.size(); k += stride, ++samples) {
+    if (dest.label_at_cell(to_cell * source.centres[static_cast<std::size_t>(cells[k])]) == dest_area) ++hits;
   }
-  const double overlap_m2 = static_cast<double>(hits) * source.cell_area() * T_dest_source.scale * T_dest_source.scale;
+  if (samples == 0) return 0.0;
+  const double overlap_m2 = static_cast<double>(hits) * static_cast<double>(cells.size()) / static_cast<double>(samples) *
+                            source.cell_area() * T_dest_source.scale * T_dest_source.scale;
   return std::min(1.0, overlap_m2 / denominator);
 }
 

@@ -9,6 +9,7 @@
 #include "../area_graph.hpp"
 #include "../error.hpp"
 #include "../grid.hpp"
+#include "raster.hpp"
 #include "../transform.hpp"
 
 #include <Eigen/Core>
@@ -24,11 +25,11 @@
 namespace areamatch {
 
 struct RefineParams {
-  std::vector<double> gates_m{2.0, 1.4, 1.0, 0.7, 0.5, 0.4};  ///< correspondence gates, one stage each
+  std::vector<double> gates_m{2.0, 1.2, 0.7, 0.4};  ///< correspondence gates, one stage each
   int iterations_per_gate = 4;
   double keep_fraction = 0.8;       ///< share of the gated correspondences kept (closest first)
   double point_spacing_m = 0.1;     ///< source boundary points are thinned to about this spacing
-  int max_points = 4000;            ///< and to at most this many
+  int max_points = 2000;            ///< and to at most this many
   double lookup_cell_m = 0.1;       ///< cell of the destination's nearest-boundary-point lookup
 
   void validate() const {
@@ -44,11 +45,11 @@ struct RefineParams {
 
 namespace detail {
 
-/// World positions of the cells on the edge of a region (a cell inside with a 4-neighbour
-/// outside or off the grid), thinned to one per `spacing_m` square, in scan order, then evenly to
+/// World positions of the cells within `bounds` on the edge of a region (a cell inside with a
+/// 4-neighbour outside or off the grid), thinned to one per `spacing_m` square, in scan order, then evenly to
 /// at most `max_points`. `inside(index)` tells whether the cell with that row-major index is in it.
 template <class Inside>
-std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, Inside inside, double spacing_m,
+std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m,
                                              std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
   const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
   const int bins_x = (g.width + step - 1) / step;
@@ -59,8 +60,8 @@ std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, Inside inside, d
   };
   const Eigen::Affine2d world = g.world_from_pixel();
   std::vector<Eigen::Vector2d> points;
-  for (int y = 0; y < g.height; ++y) {
-    for (int x = 0; x < g.width; ++x) {
+  for (int y = bounds.row0; y < bounds.row1; ++y) {
+    for (int x = bounds.col0; x < bounds.col1; ++x) {
       if (!in(x, y)) continue;
       if (in(x - 1, y) && in(x + 1, y) && in(x, y - 1) && in(x, y + 1)) continue;
       auto& bin = taken[static_cast<std::size_t>(y / step) * static_cast<std::size_t>(bins_x) + static_cast<std::size_t>(x / step)];
@@ -78,11 +79,20 @@ std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, Inside inside, d
   return points;
 }
 
-/// Edge points of a map's free space (what the reference scorer's boundary is made of).
-inline std::vector<Eigen::Vector2d> free_boundary_points(const OccupancyGrid& grid, const GridInfo& info, double spacing_m,
+/// Edge points of a map's free space (what the reference scorer's boundary is made of) within
+/// the extent of its areas: free streaks far outside the building do not count.
+inline std::vector<Eigen::Vector2d> free_boundary_points(const OccupancyGrid& grid, const AreaGraph& graph, double spacing_m,
                                                          std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
   const auto& cells = grid.cells();
-  return boundary_points(info, [&](std::size_t i) { return cells[i] == CellState::free; }, spacing_m, max_points);
+  return boundary_points(graph.grid, label_bounds(graph), [&](std::size_t i) { return cells[i] == CellState::free; },
+                         spacing_m, max_points);
+}
+
+/// Edge points of the area-covered free space.
+inline std::vector<Eigen::Vector2d> area_boundary_points(const AreaGraph& graph, double spacing_m,
+                                                         std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+  return boundary_points(graph.grid, label_bounds(graph), [&](std::size_t i) { return graph.labels[i] >= 0; }, spacing_m,
+                         max_points);
 }
 
 }  // namespace detail

@@ -58,6 +58,7 @@ struct MatchResult {
   double confidence = 0.0;
   double margin_different = std::numeric_limits<double>::quiet_NaN();  ///< NaN when there is no rival
   double margin_mirrored = std::numeric_limits<double>::quiet_NaN();   ///< NaN without allow_reflection
+  bool ambiguous = false;          ///< confidence below `MatcherParams::ambiguity_margin`
   std::vector<MatchedAreaPair> matched_areas;
   MatchStatistics statistics;
   MatchTimings timings;

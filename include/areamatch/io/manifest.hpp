@@ -1,0 +1,134 @@
+#pragma once
+/// \file io/manifest.hpp
+/// Pairs manifests: the JSON format of `shared/pairs.json`, for evaluating a matcher on map pairs
+/// with (optional) ground truth. Read with yaml-cpp, which reads JSON.
+///
+///     {"correct_if": {"max_rotation_error_deg": 3.0, "max_mean_displacement_m": 1.0},
+///      "pairs": [{"name": "...", "source": "maps/a.yaml", "destination": "maps/b.yaml",
+///                 "ground_truth": {"pixel_transform": [[a, b, tx], [c, d, ty]], ...},
+///                 "door_width_m": 1.2, "ambiguous": false, "kind": "...", "note": "..."}]}
+///
+/// Map paths are relative to the manifest's folder unless absolute. `ground_truth`,
+/// `door_width_m`, `ambiguous`, `kind`, `note` and `correct_if` are optional.
+
+#include "../error.hpp"
+#include "../evaluation.hpp"
+#include "../transform.hpp"
+
+#include <yaml-cpp/yaml.h>
+
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace areamatch {
+
+struct ManifestPair {
+  std::string name;
+  std::string kind;
+  std::string source;       ///< path as resolved (relative to the manifest's folder)
+  std::string destination;
+  std::optional<PixelTransform> ground_truth;  ///< source pixel → destination pixel
+  std::optional<double> door_width_m;
+  bool ambiguous = false;
+};
+
+struct Manifest {
+  std::string path;
+  CorrectnessThresholds correct_if;
+  std::vector<ManifestPair> pairs;
+};
+
+namespace detail {
+
+inline std::string resolve_relative(const std::string& base_file, const std::string& path) {
+  if (!path.empty() && path[0] == '/') return path;
+  const auto slash = base_file.find_last_of('/');
+  return slash == std::string::npos ? path : base_file.substr(0, slash + 1) + path;
+}
+
+inline double manifest_number(const YAML::Node& node, const std::string& where) {
+  try {
+    const double value = node.as<double>();
+    if (!std::isfinite(value)) throw format_error(where + " must be a finite number");
+    return value;
+  } catch (const YAML::Exception&) {
+    throw format_error(where + " must be a number");
+  }
+}
+
+inline std::string manifest_text(const YAML::Node& node, const std::string& where) {
+  if (!node || !node.IsScalar()) throw format_error(where + " must be a string");
+  return node.as<std::string>();
+}
+
+}  // namespace detail
+
+/// Reads a pairs manifest. Throws `io_error` when the file cannot be read and `format_error`
+/// naming the pair and field when something in it is wrong (missing or mistyped field, duplicate
+/// pair name, a ground truth that is not a 2×3 matrix).
+inline Manifest load_manifest(const std::string& path) {
+  YAML::Node root;
+  try {
+    root = YAML::LoadFile(path);
+  } catch (const YAML::BadFile&) {
+    throw io_error("cannot read manifest " + path);
+  } catch (const YAML::Exception& e) {
+    throw format_error(path + ": not valid JSON/YAML: " + e.what());
+  }
+  Manifest m;
+  m.path = path;
+  if (!root.IsMap()) throw format_error(path + ": the manifest must be a JSON object with a \"pairs\" array");
+  if (const YAML::Node c = root["correct_if"]) {
+    if (!c.IsMap()) throw format_error(path + ": correct_if must be an object");
+    if (c["max_rotation_error_deg"]) {
+      m.correct_if.max_rotation_error_deg = detail::manifest_number(c["max_rotation_error_deg"], path + ": correct_if.max_rotation_error_deg");
+    }
+    if (c["max_mean_displacement_m"]) {
+      m.correct_if.max_mean_displacement_m = detail::manifest_number(c["max_mean_displacement_m"], path + ": correct_if.max_mean_displacement_m");
+    }
+  }
+  const YAML::Node pairs = root["pairs"];
+  if (!pairs || !pairs.IsSequence()) throw format_error(path + ": \"pairs\" must be an array");
+  std::set<std::string> names;
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    const YAML::Node p = pairs[i];
+    const std::string at = path + ": pair " + std::to_string(i);
+    if (!p.IsMap()) throw format_error(at + " must be an object");
+    ManifestPair pair;
+    pair.name = detail::manifest_text(p["name"], at + ": name");
+    const std::string where = path + ": pair '" + pair.name + "'";
+    if (!names.insert(pair.name).second) throw format_error(where + ": duplicate pair name");
+    if (p["kind"]) pair.kind = detail::manifest_text(p["kind"], where + ": kind");
+    pair.source = detail::resolve_relative(path, detail::manifest_text(p["source"], where + ": source"));
+    pair.destination = detail::resolve_relative(path, detail::manifest_text(p["destination"], where + ": destination"));
+    if (p["door_width_m"]) {
+      const double w = detail::manifest_number(p["door_width_m"], where + ": door_width_m");
+      if (!(w > 0.0)) throw format_error(where + ": door_width_m must be positive");
+      pair.door_width_m = w;
+    }
+    if (p["ambiguous"]) {
+      try {
+        pair.ambiguous = p["ambiguous"].as<bool>();
+      } catch (const YAML::Exception&) {
+        throw format_error(where + ": ambiguous must be true or false");
+      }
+    }
+    if (const YAML::Node g = p["ground_truth"]) {
+      const YAML::Node t = g.IsMap() ? g["pixel_transform"] : YAML::Node();
+      if (!t || !t.IsSequence() || t.size() != 2 || !t[0].IsSequence() || !t[1].IsSequence() || t[0].size() != 3 ||
+          t[1].size() != 3) {
+        throw format_error(where + ": ground_truth.pixel_transform must be [[a, b, tx], [c, d, ty]]");
+      }
+      PixelTransform m2;
+      for (int r = 0; r < 2; ++r)
+        for (int c = 0; c < 3; ++c) m2(r, c) = detail::manifest_number(t[r][c], where + ": ground_truth.pixel_transform");
+      pair.ground_truth = m2;
+    }
+    m.pairs.push_back(std::move(pair));
+  }
+  return m;
+}
+
+}  // namespace areamatch

@@ -1,0 +1,201 @@
+// The matcher on synthetic pairs (a fixed set of 100 seeds: every rotation, translation, noise,
+// clutter, partial exploration, mirrors), its determinism, its policies and its bad inputs.
+#include <areamatch/areamatch.hpp>
+#include <areamatch/evaluation.hpp>
+#include <areamatch/io/json.hpp>
+
+#include <doctest/doctest.h>
+
+#include "synthetic_cases.hpp"
+
+#include <algorithm>
+#include <string>
+#include <vector>
+
+using namespace areamatch;
+
+namespace {
+
+double median(std::vector<double> v) {
+  std::sort(v.begin(), v.end());
+  return v.empty() ? 0.0 : v[v.size() / 2];
+}
+
+/// The JSON of a result without its timings, which differ from run to run.
+std::string without_timings(const MatchResult& r) {
+  const std::string json = match_result_json(r);
+  return json.substr(0, json.find("\"timings\""));
+}
+
+OccupancyGrid rectangle_room(double width_m, double height_m, double resolution = 0.05) {
+  const int w = static_cast<int>(width_m / resolution) + 4, h = static_cast<int>(height_m / resolution) + 4;
+  OccupancyGrid grid(w, h, resolution, {}, CellState::occupied);
+  for (int r = 2; r < h - 2; ++r)
+    for (int c = 2; c < w - 2; ++c) grid.set(c, r, CellState::free);
+  return grid;
+}
+
+}  // namespace
+
+TEST_CASE("synthetic pairs: at least 95 of 100 correct, accurate when correct") {
+  const CorrectnessThresholds thresholds{3.0, 0.5};
+  int correct = 0;
+  std::vector<double> rotation_errors, displacements;
+  for (std::uint64_t seed = 0; seed < 100; ++seed) {
+    const auto c = areamatch_test::synthetic_case(seed);
+    Matcher<> matcher;
+    matcher.params.allow_reflection = true;
+    const MatchResult r = matcher.match(c.robot.grid, c.building.layout);
+    const MatchError e = match_error(r.pixel_transform, c.robot.pixel_transform, free_edge_pixels(c.robot.grid),
+                                     c.building.layout.resolution());
+    if (r.ok && e.correct(thresholds)) {
+      ++correct;
+      rotation_errors.push_back(e.rotation_error_deg);
+      displacements.push_back(e.mean_displacement_m);
+    } else {
+      MESSAGE("seed " << seed << ": " << (r.ok ? "wrong" : r.reason) << ", rotation error " << e.rotation_error_deg
+                      << " deg, displacement " << e.mean_displacement_m << " m");
+    }
+  }
+  MESSAGE(correct << "/100 correct; median rotation error " << median(rotation_errors) << " deg, displacement "
+                  << median(displacements) << " m");
+  CHECK(correct >= 95);
+  CHECK(median(rotation_errors) <= 0.5);
+  CHECK(median(displacements) <= 0.10);
+}
+
+TEST_CASE("the same pair gives the same result, bit for bit") {
+  const auto c = areamatch_test::synthetic_case(7);
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  const std::string first = without_timings(matcher.match(c.robot.grid, c.building.layout));
+  for (int i = 0; i < 3; ++i) CHECK(without_timings(matcher.match(c.robot.grid, c.building.layout)) == first);
+  const PaperMatcher paper;
+  const std::string paper_first = without_timings(paper.match(c.robot.grid, c.building.layout));
+  CHECK(without_timings(paper.match(c.robot.grid, c.building.layout)) == paper_first);
+}
+
+TEST_CASE("a map matched against itself gives the identity") {
+  const auto building = generate_building({}, 3);
+  const MatchResult r = Matcher<>{}.match(building.layout, building.layout);
+  REQUIRE(r.ok);
+  CHECK(std::abs(r.T_dest_source.rotation) < 1e-3);
+  INFO("translation " << r.T_dest_source.translation.transpose());
+  CHECK(r.T_dest_source.translation.norm() < 0.05);
+  CHECK_FALSE(r.T_dest_source.reflected);
+  CHECK(r.matched_areas.size() == r.statistics.source_areas);
+}
+
+TEST_CASE("the paper preset runs and answers on a clean pair") {
+  const auto building = generate_building({}, 5);
+  RobotMapParams params;
+  params.rotation_rad = 0.6;
+  const auto robot = make_robot_map(building, params, 5);
+  const MatchResult r = PaperMatcher{}.match(robot.grid, building.layout);
+  CHECK(r.statistics.mutual_pairs > 0);
+  CHECK(r.timings.match_s >= 0.0);
+  if (r.ok) CHECK(std::isfinite(r.T_dest_source.rotation));
+}
+
+TEST_CASE("maps without areas give a clear not-ok result, never a crash") {
+  const OccupancyGrid walls(50, 50, 0.05, {}, CellState::occupied);
+  const auto building = generate_building({}, 1);
+  for (const auto& [source, dest] : {std::pair{walls, building.layout}, std::pair{building.layout, walls}}) {
+    const MatchResult r = Matcher<>{}.match(source, dest);
+    CHECK_FALSE(r.ok);
+    CHECK(r.reason.find("no areas") != std::string::npos);
+    const MatchResult p = PaperMatcher{}.match(source, dest);
+    CHECK_FALSE(p.ok);
+  }
+}
+
+TEST_CASE("one-area maps and maps without passages: an answer or a clear refusal") {
+  const OccupancyGrid a = rectangle_room(6.0, 4.0), b = rectangle_room(6.0, 4.0);
+  const MatchResult r = Matcher<>{}.match(a, b);
+  CHECK(r.statistics.source_areas == 1);
+  if (r.ok) CHECK(std::isfinite(r.score));
+  else CHECK_FALSE(r.reason.empty());
+  const MatchResult p = PaperMatcher{}.match(a, rectangle_room(3.0, 9.0));
+  if (!p.ok) CHECK_FALSE(p.reason.empty());
+}
+
+TEST_CASE("maps of different buildings do not crash and score lower than the true pair") {
+  const auto one = generate_building({}, 11);
+  BuildingParams other_params;
+  other_params.width_m = 22.0;
+  other_params.height_m = 26.0;
+  const auto other = generate_building(other_params, 12);
+  const MatchResult wrong = Matcher<>{}.match(one.layout, other.layout);
+  const MatchResult right = Matcher<>{}.match(one.layout, one.layout);
+  CHECK(right.ok);
+  CHECK(wrong.score < right.score);
+}
+
+TEST_CASE("bad parameters are refused with a message") {
+  const auto building = generate_building({}, 2);
+  Matcher<> matcher;
+  matcher.params.k = 0;
+  CHECK_THROWS_AS(matcher.match(building.layout, building.layout), parameter_error);
+  matcher.params = {};
+  matcher.params.coarse_cell_m = -1.0;
+  CHECK_THROWS_AS(matcher.match(building.layout, building.layout), parameter_error);
+  matcher.params = {};
+  matcher.params.hypotheses.min_area_overlap = 2.0;
+  CHECK_THROWS_AS(matcher.match(building.layout, building.layout), parameter_error);
+  struct Bad {
+    std::array<double, 3> values{0.5, 0.5, 0.5};
+  };
+  Matcher<VoronoiSegmenter, PaperFeatures, Bad> bad_weights;
+  CHECK_THROWS_AS(bad_weights.match(building.layout, building.layout), parameter_error);
+  BuildingParams small;
+  small.width_m = 12.0;
+  const auto other = generate_building(small, 4);
+  const AreaGraph graph = VoronoiSegmenter{}.segment(building.layout);
+  CHECK_THROWS_AS(Matcher<>{}.match(other.layout, graph, building.layout, graph), parameter_error);
+}
+
+TEST_CASE("policy concepts: the library's policies conform") {
+  static_assert(is_feature_v<AreaSize> && is_feature_v<PassageDistances> && is_feature_v<HullDiameter>);
+  static_assert(feature_has_segments_v<HullDiameter> && !feature_has_segments_v<AreaSize>);
+  static_assert(is_weights_v<PaperWeights, 3> && !is_weights_v<PaperWeights, 4>);
+  static_assert(is_clusterer_v<AngularClusterer> && is_clusterer_v<PoseClusterer>);
+  static_assert(!is_clusterer_v<int> && !is_feature_v<int>);
+  CHECK(true);
+}
+
+TEST_CASE("features and pairing follow the paper's formulas") {
+  CHECK(relative_difference(0.0, 0.0) == 0.0);
+  CHECK(relative_difference(0.0, 2.0) == 1.0);
+  CHECK(relative_difference(2.0, 4.0) == doctest::Approx(0.5));
+  CHECK(AreaSize{}.cost(4.0, 16.0) == doctest::Approx(0.5));  // |2 − 4| / 4
+  Eigen::MatrixXd cost(3, 3);
+  cost << 0.1, 0.5, 0.9,
+          0.5, 0.1, 0.2,
+          0.9, 0.2, 0.3;
+  const auto one = mutual_nearest_pairs(cost, 1);
+  REQUIRE(one.size() == 2);  // (0,0) and (1,1); row 2 prefers column 1, which prefers row 1
+  CHECK(one[0].source == 0);
+  CHECK(one[1].source == 1);
+  CHECK(mutual_nearest_pairs(cost, 3).size() == 9);
+}
+
+TEST_CASE("angular clustering does not depend on the hypotheses' order") {
+  std::vector<Hypothesis> hypotheses;
+  for (double degrees : {10.0, 11.0, 12.5, 100.0, 101.0, -179.0, 179.5, 10.5}) {
+    Hypothesis h;
+    h.T_dest_source.rotation = degrees * pi / 180.0;
+    h.area_overlap = 0.5 + 0.01 * degrees / 180.0;
+    hypotheses.push_back(h);
+  }
+  const auto clusters = AngularClusterer{}.cluster(hypotheses);
+  REQUIRE(clusters.size() == 3);
+  CHECK(clusters[0].members.size() == 4);              // 10, 10.5, 11, 12.5 degrees
+  CHECK(clusters[1].members.size() == 2);
+  std::vector<Hypothesis> reversed(hypotheses.rbegin(), hypotheses.rend());
+  const auto again = AngularClusterer{}.cluster(reversed);
+  REQUIRE(again.size() == clusters.size());
+  for (std::size_t i = 0; i < again.size(); ++i) {
+    CHECK(again[i].members.size() == clusters[i].members.size());
+    CHECK(again[i].rotation == doctest::Approx(clusters[i].rotation));
+  }
+}

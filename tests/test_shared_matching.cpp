@@ -1,0 +1,59 @@
+// Every pair of ../shared/pairs.json with the default matcher, its YAML resolutions, the pair's
+// door width where given and reflection allowed: correct by the manifest's correct_if, judged
+// as shared/tools/score.py judges. Ambiguous pairs are reported, not required. Skipped (exit 77)
+// when ../shared is not present.
+#include <areamatch/areamatch.hpp>
+#include <areamatch/evaluation.hpp>
+#include <areamatch/io.hpp>
+#include <areamatch/io/manifest.hpp>
+
+#include <doctest/doctest.h>
+
+#include "test_support.hpp"
+
+using namespace areamatch;
+
+TEST_CASE("every non-ambiguous shared pair is matched correctly") {
+  const std::string shared = areamatch_test::shared_dir();
+  if (shared.empty()) return;
+  const Manifest manifest = load_manifest(shared + "/pairs.json");
+  REQUIRE(!manifest.pairs.empty());
+  for (const ManifestPair& pair : manifest.pairs) {
+    const OccupancyGrid source = load_map(pair.source), dest = load_map(pair.destination);
+    Matcher<> matcher;
+    matcher.params.allow_reflection = true;
+    if (pair.door_width_m) matcher.segmenter.params.with_door_width(*pair.door_width_m);
+    const MatchResult r = matcher.match(source, dest);
+    REQUIRE(pair.ground_truth);
+    const MatchError e = match_error(r.pixel_transform, *pair.ground_truth, free_edge_pixels(source), dest.resolution());
+    const bool correct = r.ok && e.correct(manifest.correct_if);
+    MESSAGE(pair.name << (pair.ambiguous ? " (ambiguous)" : "") << ": " << (correct ? "correct" : "WRONG")
+                      << ", rotation error " << e.rotation_error_deg << " deg, displacement " << e.mean_displacement_m
+                      << " m, confidence " << r.confidence << ", match " << 1000.0 * r.timings.match_s << " ms");
+    if (!pair.ambiguous) CHECK_MESSAGE(correct, pair.name);
+  }
+}
+
+TEST_CASE("the manifest reader refuses bad manifests with the pair and field named") {
+  const std::string dir = areamatch_test::temp_dir();
+  auto write = [&](const std::string& name, const std::string& text) {
+    const std::string path = dir + "/" + name;
+    areamatch_test::write_bytes(path, text);
+    return path;
+  };
+  CHECK_THROWS_AS(load_manifest(dir + "/missing.json"), io_error);
+  CHECK_THROWS_WITH_AS(load_manifest(write("a.json", "{\"pairs\": 3}")), doctest::Contains("\"pairs\" must be an array"), format_error);
+  CHECK_THROWS_WITH_AS(load_manifest(write("b.json", "{\"pairs\": [{\"name\": \"x\", \"source\": \"a.yaml\"}]}")),
+                       doctest::Contains("pair 'x': destination"), format_error);
+  CHECK_THROWS_WITH_AS(load_manifest(write("c.json", "{\"pairs\": [{\"name\": \"x\", \"source\": \"a\", \"destination\": \"b\"},"
+                                                     "{\"name\": \"x\", \"source\": \"a\", \"destination\": \"b\"}]}")),
+                       doctest::Contains("duplicate"), format_error);
+  CHECK_THROWS_WITH_AS(load_manifest(write("d.json", "{\"pairs\": [{\"name\": \"x\", \"source\": \"a\", \"destination\": \"b\", "
+                                                     "\"ground_truth\": {\"pixel_transform\": [[1, 0], [0, 1]]}}]}")),
+                       doctest::Contains("pixel_transform"), format_error);
+  const Manifest ok = load_manifest(write("e.json", "{\"pairs\": [{\"name\": \"x\", \"source\": \"a.yaml\", \"destination\": \"/abs/b.yaml\"}]}"));
+  REQUIRE(ok.pairs.size() == 1);
+  CHECK(ok.pairs[0].source == dir + "/a.yaml");
+  CHECK(ok.pairs[0].destination == "/abs/b.yaml");
+  CHECK_FALSE(ok.pairs[0].ground_truth);
+}
