@@ -23,6 +23,8 @@
 #include "hypotheses.hpp"
 
 #include <algorithm>
+#include <map>
+#include <tuple>
 #include <cmath>
 #include <numeric>
 #include <type_traits>
@@ -189,31 +191,40 @@ struct PoseClusterer {
     std::vector<int> rank(hypotheses.size());
     for (std::size_t r = 0; r < order.size(); ++r) rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
     std::vector<Cluster> clusters;
-    // Clusters indexed by (mirror side, rotation bin of the leader): a hypothesis only compares
-    // with leaders in its own and the two neighbouring bins, so thousands of hypotheses cluster
-    // in linear time. A bin is at least the rotation tolerance wide, so no match is missed.
+    // Leaders indexed by (mirror side, rotation bin, translation bins): a hypothesis compares only
+    // with leaders in the neighbouring bins, so tens of thousands of hypotheses (large buildings,
+    // all walls axis-aligned) cluster in linear time. Bins are at least the tolerances wide, so
+    // no match is missed; among several matches the earliest cluster wins, as in a linear scan.
     const int bins = std::max(1, static_cast<int>(2.0 * pi / params.rotation_rad));
-    auto bin_of = [&](double rotation) {
+    auto rotation_bin = [&](double rotation) {
       return std::min(bins - 1, static_cast<int>((wrap_angle(rotation) + pi) / (2.0 * pi) * bins));
     };
-    std::vector<std::vector<int>> by_bin(2 * static_cast<std::size_t>(bins));
+    auto translation_bin = [&](double t) { return static_cast<long long>(std::floor(t / params.translation_m)); };
+    using Key = std::tuple<bool, int, long long, long long>;
+    std::map<Key, std::vector<int>> leaders;
     for (int i : order) {
       const Similarity2& T = hypotheses[static_cast<std::size_t>(i)].T_dest_source;
-      const int side = T.reflected ? bins : 0;
-      const int bin = bin_of(T.rotation);
+      const int rb = rotation_bin(T.rotation);
+      const long long xb = translation_bin(T.translation.x()), yb = translation_bin(T.translation.y());
       int found = -1;
-      for (int d = -1; d <= 1; ++d) {
-        for (int c : by_bin[static_cast<std::size_t>(side + (bin + d + bins) % bins)]) {
-          const Similarity2& L = hypotheses[static_cast<std::size_t>(clusters[static_cast<std::size_t>(c)].members.front())].T_dest_source;
-          if (std::abs(wrap_angle(L.rotation - T.rotation)) <= params.rotation_rad &&
-              (L.translation - T.translation).norm() <= params.translation_m) {
-            // The first leader in cluster order wins, whichever bin it is in.
-            if (found < 0 || c < found) found = c;
+      for (int dr = -1; dr <= 1; ++dr) {
+        for (long long dx = -1; dx <= 1; ++dx) {
+          for (long long dy = -1; dy <= 1; ++dy) {
+            const auto it = leaders.find(Key{T.reflected, (rb + dr + bins) % bins, xb + dx, yb + dy});
+            if (it == leaders.end()) continue;
+            for (int c : it->second) {
+              const Similarity2& L =
+                  hypotheses[static_cast<std::size_t>(clusters[static_cast<std::size_t>(c)].members.front())].T_dest_source;
+              if ((found < 0 || c < found) && std::abs(wrap_angle(L.rotation - T.rotation)) <= params.rotation_rad &&
+                  (L.translation - T.translation).norm() <= params.translation_m) {
+                found = c;
+              }
+            }
           }
         }
       }
       if (found < 0) {
-        by_bin[static_cast<std::size_t>(side + bin)].push_back(static_cast<int>(clusters.size()));
+        leaders[Key{T.reflected, rb, xb, yb}].push_back(static_cast<int>(clusters.size()));
         clusters.push_back({{i}, T.rotation, 0.0});
       } else {
         clusters[static_cast<std::size_t>(found)].members.push_back(i);
