@@ -16,8 +16,9 @@ struct Run {
   std::string out;  // stdout and stderr together
 };
 
-Run run(const std::string& arguments) {
-  const std::string command = std::string(AREAMATCH_CLI) + " " + arguments + " 2>&1";
+/// Runs the program; `stderr_too` false keeps only stdout (stderr is dropped).
+Run run(const std::string& arguments, bool stderr_too = true) {
+  const std::string command = std::string(AREAMATCH_CLI) + " " + arguments + (stderr_too ? " 2>&1" : " 2>/dev/null");
   FILE* pipe = ::popen(command.c_str(), "r");
   REQUIRE(pipe != nullptr);
   std::string out;
@@ -131,14 +132,9 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
   REQUIRE(run("generate " + dir + " --seed 5 --width 20 --height 14 --rotation 75 --mirror").status == 0);
   const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
   // stdout alone must be exactly one JSON object.
-  const std::string command = std::string(AREAMATCH_CLI) + " match " + pair + " --allow-reflection --json 2>/dev/null";
-  FILE* pipe = ::popen(command.c_str(), "r");
-  REQUIRE(pipe != nullptr);
-  std::string out;
-  char buffer[4096];
-  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
-  const int raw = ::pclose(pipe);
-  CHECK(WEXITSTATUS(raw) == 0);
+  const Run json = run("match " + pair + " --allow-reflection --json", /*stderr_too=*/false);
+  const std::string& out = json.out;
+  CHECK(json.status == 0);
   CHECK(out.rfind("{\"ok\": true", 0) == 0);
   CHECK(out.find('\n') == out.size() - 1);
   for (const char* key : {"\"rotation_deg\"", "\"translation_m\"", "\"scale\"", "\"reflected\": true", "\"pixel_transform\"",
