@@ -55,7 +55,7 @@ namespace areamatch {
 /// How a candidate transform is chosen among the clusters.
 enum class Selection : std::uint8_t {
   largest_cluster,  ///< the paper: the largest cluster's member with the highest Σ OP over all pairs
-  whole_map         ///< ours: the best members of every cluster, scored by whole-map free-space IoU
+  whole_map         ///< ours: the best members of every cluster, verified on the whole map
 };
 
 struct MatcherParams {
@@ -89,7 +89,7 @@ struct MatcherParams {
   /// centroid) count as the same answer when the confidence margin is computed.
   double different_rotation_rad = 3.0 * pi / 180.0;
   double different_translation_m = 1.0;
-  /// Below this whole-map IoU the best transform is rejected (ok = false).
+  /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected (ok = false).
   double min_score = 0.25;
   /// Below this margin to a different or mirrored rival the result is rejected (ok = false).
   double min_confidence = 0.0;
@@ -285,7 +285,7 @@ class Matcher {
     const AreaRaster& dest_fine = dest_fine_own ? *dest_fine_own : dest_raster;
     std::vector<detail::ScoredTransform> finalists;  // best first
     if (params.selection == Selection::largest_cluster) {
-      finalists = select_largest_cluster(source, dest, source_raster, dest_raster, pairs, hypotheses, clusters, result);
+      finalists = select_largest_cluster(inputs, pairs, hypotheses, clusters, result);
     } else {
       finalists = select_whole_map(source_map, dest_map, source_raster, dest_raster, source_fine, dest_fine,
                                    hypotheses, clusters, result);
@@ -301,7 +301,7 @@ class Matcher {
     result.matched_areas = matched_areas(source, dest, source_fine, dest_fine, best.T);
 
     if (params.selection == Selection::whole_map && result.score < params.min_score) {
-      return finish("best whole-map overlap (IoU " + std::to_string(result.score) + ") is below min_score " +
+      return finish("best whole-map score " + std::to_string(result.score) + " is below min_score " +
                     std::to_string(params.min_score) + ": the maps do not match");
     }
     result.ambiguous = result.confidence < params.ambiguity_margin;
@@ -319,22 +319,14 @@ class Matcher {
   /// The paper: on each side of the mirror, the largest cluster's member with the highest
   /// Σ OP over all mutual pairs; the sides compare by that Σ OP. Also returns the first member of
   /// every other cluster (scored by Σ OP too) so the margins can be computed.
-  std::vector<detail::ScoredTransform> select_largest_cluster(const AreaGraph& source, const AreaGraph& dest,
-                                                              const AreaRaster& source_raster,
-                                                              const AreaRaster& dest_raster,
+  std::vector<detail::ScoredTransform> select_largest_cluster(const HypothesisInputs& inputs,
                                                               const std::vector<AreaPair>& pairs,
                                                               const std::vector<Hypothesis>& hypotheses,
                                                               const std::vector<Cluster>& clusters,
                                                               MatchResult& result) const {
     auto total_overlap = [&](const Similarity2& T) {
       double sum = 0.0;
-      for (const AreaPair& pair : pairs) {
-        const Area& a = source.areas[static_cast<std::size_t>(pair.source)];
-        const Area& b = dest.areas[static_cast<std::size_t>(pair.dest)];
-        sum += params.hypotheses.exact_overlap
-                   ? detail::exact_area_overlap(a, b, T)
-                   : raster_area_overlap(source_raster, dest_raster, pair.source, pair.dest, a.size_m2, b.size_m2, T);
-      }
+      for (const AreaPair& pair : pairs) sum += pair_overlap(inputs, pair, params.hypotheses.exact_overlap, T);
       return sum;
     };
     std::vector<detail::ScoredTransform> chosen;   // the best of each side's largest cluster
@@ -462,7 +454,7 @@ class Matcher {
     return raster.centres.empty() ? centroid : Eigen::Vector2d(centroid / static_cast<double>(raster.centres.size()));
   }
 
-  /// Margins of the best finalist (IoU on the fine raster) over the best clearly different one and
+  /// Margins of the best finalist (by the finalists' score) over the best clearly different one and
   /// the best mirrored one.
   void compute_margins(const AreaRaster& source_fine, const AreaRaster& dest_fine,
                        const std::vector<detail::ScoredTransform>& finalists, MatchResult& result) const {

@@ -71,9 +71,11 @@ inline double circular_mean(const std::vector<Hypothesis>& hypotheses, const std
   return std::atan2(s, c);
 }
 
-/// Fills each cluster's mean rotation and Σ OP, puts its members in the given order's ranking.
-inline void finish_clusters(const std::vector<Hypothesis>& hypotheses, const std::vector<int>& rank,
+/// Fills each cluster's mean rotation and Σ OP and puts its members in `order` (best first).
+inline void finish_clusters(const std::vector<Hypothesis>& hypotheses, const std::vector<int>& order,
                             std::vector<Cluster>& clusters) {
+  std::vector<int> rank(hypotheses.size());
+  for (std::size_t r = 0; r < order.size(); ++r) rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
   for (Cluster& cluster : clusters) {
     std::sort(cluster.members.begin(), cluster.members.end(),
               [&](int a, int b) { return rank[static_cast<std::size_t>(a)] < rank[static_cast<std::size_t>(b)]; });
@@ -102,8 +104,6 @@ struct AngularClusterer {
   std::vector<Cluster> cluster(const std::vector<Hypothesis>& hypotheses) const {
     detail::require_positive(params.threshold_rad, "AngularClusterer::Params::threshold_rad");
     const std::vector<int> order = detail::by_overlap(hypotheses);
-    std::vector<int> rank(hypotheses.size());
-    for (std::size_t r = 0; r < order.size(); ++r) rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
 
     std::vector<Cluster> clusters;
     auto nearest = [&](const Hypothesis& h) {
@@ -164,7 +164,7 @@ struct AngularClusterer {
       }
       if (!moved) break;
     }
-    detail::finish_clusters(hypotheses, rank, clusters);
+    detail::finish_clusters(hypotheses, order, clusters);
     std::stable_sort(clusters.begin(), clusters.end(), [](const Cluster& a, const Cluster& b) {
       if (a.members.size() != b.members.size()) return a.members.size() > b.members.size();
       return a.total_overlap > b.total_overlap;
@@ -188,8 +188,6 @@ struct PoseClusterer {
     detail::require_positive(params.rotation_rad, "PoseClusterer::Params::rotation_rad");
     detail::require_positive(params.translation_m, "PoseClusterer::Params::translation_m");
     const std::vector<int> order = detail::by_overlap(hypotheses);
-    std::vector<int> rank(hypotheses.size());
-    for (std::size_t r = 0; r < order.size(); ++r) rank[static_cast<std::size_t>(order[r])] = static_cast<int>(r);
     std::vector<Cluster> clusters;
     // Leaders indexed by (mirror side, rotation bin, translation bins): a hypothesis compares only
     // with leaders in the neighbouring bins, so tens of thousands of hypotheses (large buildings,
@@ -230,7 +228,7 @@ struct PoseClusterer {
         clusters[static_cast<std::size_t>(found)].members.push_back(i);
       }
     }
-    detail::finish_clusters(hypotheses, rank, clusters);
+    detail::finish_clusters(hypotheses, order, clusters);
     std::stable_sort(clusters.begin(), clusters.end(),
                      [](const Cluster& a, const Cluster& b) { return a.total_overlap > b.total_overlap; });
     return clusters;

@@ -192,6 +192,16 @@ struct HypothesisInputs {
   double dest_wall_direction = 0.0;
 };
 
+/// The pair's overlap percentage OP under T: exact (Boost.Geometry, the paper's) or counted on
+/// the rasters.
+inline double pair_overlap(const HypothesisInputs& in, const AreaPair& pair, bool exact, const Similarity2& T) {
+  const Area& source_area = in.source->areas[static_cast<std::size_t>(pair.source)];
+  const Area& dest_area = in.dest->areas[static_cast<std::size_t>(pair.dest)];
+  return exact ? detail::exact_area_overlap(source_area, dest_area, T)
+               : raster_area_overlap(*in.source_raster, *in.dest_raster, pair.source, pair.dest, source_area.size_m2,
+                                     dest_area.size_m2, T);
+}
+
 /// Hypotheses of one pair on one side of the mirror, appended to `out` when their overlap
 /// passes. `segments` is the pair's segment evidence in feature order.
 inline void add_pair_hypotheses(const HypothesisInputs& in, const AreaPair& pair,
@@ -199,12 +209,7 @@ inline void add_pair_hypotheses(const HypothesisInputs& in, const AreaPair& pair
                                 const HypothesisParams& params, std::vector<Hypothesis>& out) {
   const Area& source_area = in.source->areas[static_cast<std::size_t>(pair.source)];
   const Area& dest_area = in.dest->areas[static_cast<std::size_t>(pair.dest)];
-  auto overlap = [&](const Similarity2& T) {
-    return params.exact_overlap
-               ? detail::exact_area_overlap(source_area, dest_area, T)
-               : raster_area_overlap(*in.source_raster, *in.dest_raster, pair.source, pair.dest, source_area.size_m2,
-                                     dest_area.size_m2, T);
-  };
+  auto overlap = [&](const Similarity2& T) { return pair_overlap(in, pair, params.exact_overlap, T); };
   auto emit = [&](const Similarity2& T, HypothesisOrigin origin) {
     Hypothesis h;
     h.T_dest_source = T;

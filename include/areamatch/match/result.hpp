@@ -49,10 +49,11 @@ struct MatchResult {
   std::string reason;              ///< why not ok (empty when ok)
   Similarity2 T_dest_source;       ///< source world → destination world (metres)
   PixelTransform pixel_transform = PixelTransform::Zero();  ///< source pixel → destination pixel
-  /// Whole-map score of the result: IoU of the two maps' area-covered free space (default), or
-  /// the paper's Σ OP over the mutual pairs (paper preset).
+  /// Whole-map score of the result: (1 − w) · IoU of the two maps' area-covered free space + w ·
+  /// share of the source's free-space edge on the destination's, w = `wall_score_weight` (1 by
+  /// default: the edge share); the paper preset reports its Σ OP over the mutual pairs.
   double score = 0.0;
-  /// min(margin_different, margin_mirrored): how much better the result scores (IoU) than the
+  /// min(margin_different, margin_mirrored): how much better the result scores than the
   /// best clearly different transform and than the best transform on the other side of the
   /// mirror. Small means ambiguous (a near-symmetric building).
   double confidence = 0.0;
