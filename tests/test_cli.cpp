@@ -1,4 +1,5 @@
-// The areamatch program: help, info, generate, and exit status 2 with a message for bad input.
+// The areamatch program: help, info, generate, segment, match, eval, and exit status 2 with a
+// message for bad input.
 #include <doctest/doctest.h>
 
 #include <areamatch/io.hpp>
@@ -26,6 +27,11 @@ Run run(const std::string& arguments, bool stderr_too = true) {
   while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) out.append(buffer, n);
   const int raw = ::pclose(pipe);
   return {WIFEXITED(raw) ? WEXITSTATUS(raw) : -1, out};
+}
+
+std::string read_text(const std::string& path) {
+  const auto bytes = areamatch::detail::read_file_bytes(path);
+  return std::string(bytes.begin(), bytes.end());
 }
 
 }  // namespace
@@ -170,4 +176,86 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   CHECK(none.status == 1);
   CHECK(none.out.find("\"ok\": false") != std::string::npos);
   CHECK(none.out.find("no areas") != std::string::npos);
+}
+
+TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth") {
+  const std::string dir = areamatch_test::temp_dir() + "/eval_pair";
+  REQUIRE(run("generate " + dir + " --seed 5 --width 18 --height 12 --rotation 75").status == 0);
+  const std::string out = areamatch_test::temp_dir() + "/eval_out";
+  const Run eval = run("eval " + dir + "/pairs.json --out " + out + " --repeat 2", /*stderr_too=*/false);
+  INFO(eval.out);
+  REQUIRE(eval.status == 0);
+  CHECK(eval.out.find("synthetic_5") != std::string::npos);
+  CHECK(eval.out.find("correct: 1 / 1") != std::string::npos);
+  CHECK(eval.out.find("NOT REPEATABLE") == std::string::npos);
+  for (const char* file : {"report.md", "results.json", "results.csv", "pairs/001_synthetic_5.png"}) {
+    CHECK_MESSAGE(areamatch::detail::read_file_bytes(out + "/" + file).size() > 0, file);
+  }
+  const std::string report = read_text(out + "/report.md");
+  CHECK(report.find("![synthetic_5](pairs/001_synthetic_5.png)") != std::string::npos);
+  const std::string csv = read_text(out + "/results.csv");
+  CHECK(csv.find("\nsynthetic_5,synthetic,false,") != std::string::npos);
+  CHECK(read_text(out + "/results.json").find("\"correct_non_ambiguous\": 1") != std::string::npos);
+
+  // The same pair without ground truth: transforms and times only.
+  std::string manifest = read_text(dir + "/pairs.json");
+  const auto truth = manifest.find(",\n   \"ground_truth\"");
+  REQUIRE(truth != std::string::npos);
+  manifest = manifest.substr(0, truth) + "\n  }\n ]\n}\n";
+  areamatch_test::write_bytes(dir + "/no_truth.json", manifest);
+  const Run plain = run("eval " + dir + "/no_truth.json", false);
+  INFO(plain.out);
+  CHECK(plain.status == 0);
+  CHECK(plain.out.find("no ground truth") != std::string::npos);
+}
+
+TEST_CASE("eval: bad manifests exit 2 naming the pair and field") {
+  const std::string dir = areamatch_test::temp_dir() + "/eval_bad";
+  REQUIRE(run("generate " + dir + " --seed 2 --width 12 --height 10").status == 0);
+  auto eval_of = [&](const std::string& name, const std::string& text) {
+    areamatch_test::write_bytes(dir + "/" + name, text);
+    return run("eval " + dir + "/" + name);
+  };
+  const std::string ok_pair = R"({"name": "a", "source": "robot.yaml", "destination": "layout.yaml"})";
+  const std::string truth = R"("ground_truth": {"pixel_transform": [[1, 0, 0], [0, 1, 0]]})";
+  const struct {
+    const char* file;
+    std::string text;
+    const char* message;
+  } cases[] = {
+      {"missing_file.json", R"({"pairs": [{"name": "a", "source": "nope.yaml", "destination": "layout.yaml"}]})",
+       "pair 'a': source"},
+      {"number_type.json", R"({"pairs": [{"name": "a", "source": "robot.yaml", "destination": "layout.yaml", "door_width_m": "wide"}]})",
+       "pair 'a': door_width_m must be a number"},
+      {"bool_type.json", R"({"pairs": [{"name": "a", "source": "robot.yaml", "destination": "layout.yaml", "ambiguous": 3}]})",
+       "pair 'a': ambiguous must be true or false"},
+      {"name_type.json", R"({"pairs": [{"name": ["a"], "source": "robot.yaml", "destination": "layout.yaml"}]})",
+       "pair 0: name must be a string"},
+      {"missing_truth.json", R"({"pairs": [{"name": "a", "source": "robot.yaml", "destination": "layout.yaml", )" + truth +
+                                 "}, " + R"({"name": "b", "source": "robot.yaml", "destination": "layout.yaml"}]})",
+       "pair 'b': ground_truth missing"},
+      {"duplicate.json", "{\"pairs\": [" + ok_pair + ", " + ok_pair + "]}", "pair 'a': duplicate pair name"},
+      {"not_json.json", "{\"pairs\": [", "not valid JSON"},
+      {"empty.json", "{\"pairs\": []}", "\"pairs\" is empty"},
+      {"bad_resolution.json", R"({"pairs": [{"name": "a", "source": "robot.yaml", "destination": "layout.yaml", "source_resolution": -1}]})",
+       "pair 'a': source_resolution must be positive"},
+  };
+  for (const auto& c : cases) {
+    const Run r = eval_of(c.file, c.text);
+    INFO(c.file << ": " << r.out);
+    CHECK(r.status == 2);
+    CHECK(r.out.find(c.message) != std::string::npos);
+  }
+  const Run missing = run("eval " + dir + "/no_such_manifest.json");
+  CHECK(missing.status == 2);
+  CHECK(missing.out.find("cannot read manifest") != std::string::npos);
+  const Run unknown_pair = run("eval " + dir + "/pairs.json --only nobody");
+  CHECK(unknown_pair.status == 2);
+  CHECK(unknown_pair.out.find("no pair named 'nobody'") != std::string::npos);
+
+  // A corrupt map: the pair is reported as an error, the exit status is 2.
+  areamatch_test::write_bytes(dir + "/corrupt.png", "not an image");
+  const Run corrupt = eval_of("corrupt.json", R"({"pairs": [{"name": "a", "source": "corrupt.png", "destination": "layout.yaml"}]})");
+  CHECK(corrupt.status == 2);
+  CHECK(corrupt.out.find("error in a:") != std::string::npos);
 }

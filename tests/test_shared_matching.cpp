@@ -5,7 +5,7 @@
 #include <areamatch/areamatch.hpp>
 #include <areamatch/evaluation.hpp>
 #include <areamatch/io.hpp>
-#include <areamatch/io/manifest.hpp>
+#include <areamatch/io/evaluate.hpp>
 
 #include <doctest/doctest.h>
 
@@ -18,19 +18,17 @@ TEST_CASE("every non-ambiguous shared pair is matched correctly") {
   if (shared.empty()) return;
   const Manifest manifest = load_manifest(shared + "/pairs.json");
   REQUIRE(!manifest.pairs.empty());
+  const EvalOptions options;  // reflection allowed, the pair's door width, its YAML resolutions
   for (const ManifestPair& pair : manifest.pairs) {
-    const OccupancyGrid source = load_map(pair.source), dest = load_map(pair.destination);
-    Matcher<> matcher;
-    matcher.params.allow_reflection = true;
-    if (pair.door_width_m) matcher.segmenter.params.with_door_width(*pair.door_width_m);
-    const MatchResult r = matcher.match(source, dest);
     REQUIRE(pair.ground_truth);
-    const MatchError e = match_error(r.pixel_transform, *pair.ground_truth, free_edge_pixels(source), dest.resolution());
-    const bool correct = r.ok && e.correct(manifest.correct_if);
-    MESSAGE(pair.name << (pair.ambiguous ? " (ambiguous)" : "") << ": " << (correct ? "correct" : "WRONG")
-                      << ", rotation error " << e.rotation_error_deg << " deg, displacement " << e.mean_displacement_m
-                      << " m, confidence " << r.confidence << ", match " << 1000.0 * r.timings.match_s << " ms");
-    if (!pair.ambiguous) CHECK_MESSAGE(correct, pair.name);
+    const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, options);
+    REQUIRE_MESSAGE(row.failure.empty(), row.failure);
+    const MatchResult& r = row.result;
+    MESSAGE(pair.name << (pair.ambiguous ? " (ambiguous)" : "") << ": " << (row.correct ? "correct" : "WRONG")
+                      << ", rotation error " << row.error->rotation_error_deg << " deg, displacement "
+                      << row.error->mean_displacement_m << " m, confidence " << r.confidence << ", match "
+                      << 1000.0 * r.timings.match_s << " ms");
+    if (!pair.ambiguous) CHECK_MESSAGE(row.correct, pair.name);
   }
 }
 

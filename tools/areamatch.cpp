@@ -3,6 +3,7 @@
 //   areamatch info MAP            size, resolution, origin and cell fractions of a map
 //   areamatch segment MAP         the map's Area Graph, with pictures, labels and JSON
 //   areamatch match SOURCE DEST   the transform between two maps, with a picture and JSON
+//   areamatch eval MANIFEST       every pair of a manifest, scored against its ground truth
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
 //
 // Exit status: 0 success, 1 no acceptable result (matching), 2 bad input or usage.
@@ -11,8 +12,11 @@
 #include <areamatch/areamatch.hpp>
 #include <areamatch/detail/format.hpp>
 #include <areamatch/io.hpp>
+#include <areamatch/io/eval_report.hpp>
+#include <areamatch/io/match_files.hpp>
 
-#include <chrono>
+#include <algorithm>
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -301,52 +305,22 @@ int run_match(const std::vector<std::string>& tokens) {
   if (shared_door && (args.text("source-door-width") || args.text("dest-door-width"))) {
     throw UsageError("give either --door-width or --source-door-width/--dest-door-width, not both");
   }
-  areamatch::LoadOptions source_options, dest_options;
-  source_options.resolution = args.number("source-resolution", /*positive=*/true);
-  dest_options.resolution = args.number("dest-resolution", /*positive=*/true);
+  areamatch::MapPairOptions options;
+  options.source_load.resolution = args.number("source-resolution", /*positive=*/true);
+  options.dest_load.resolution = args.number("dest-resolution", /*positive=*/true);
   const auto door = args.number("door-width", true);
-  const auto source_door = door ? door : args.number("source-door-width", true);
-  const auto dest_door = door ? door : args.number("dest-door-width", true);
-  const auto k = args.integer("k", 1, 1000);
-  const auto min_score = args.number("min-score", false, true);
+  options.source_door_width_m = door ? door : args.number("source-door-width", true);
+  options.dest_door_width_m = door ? door : args.number("dest-door-width", true);
+  if (const auto k = args.integer("k", 1, 1000)) options.k = static_cast<std::size_t>(*k);
+  options.min_score = args.number("min-score", false, true);
+  options.paper = args.flag("paper");
+  options.allow_reflection = args.flag("allow-reflection");
 
-  const auto start = std::chrono::steady_clock::now();
-  const auto source = areamatch::load_map(args.positional()[0], source_options);
-  const auto dest = areamatch::load_map(args.positional()[1], dest_options);
-  areamatch::VoronoiSegmenter source_segmenter, dest_segmenter;
-  if (source_door) source_segmenter.params.with_door_width(*source_door);
-  if (dest_door) dest_segmenter.params.with_door_width(*dest_door);
-  const auto segment_start = std::chrono::steady_clock::now();
-  const auto source_graph = source_segmenter.segment(source);
-  const auto dest_start = std::chrono::steady_clock::now();
-  const auto dest_graph = dest_segmenter.segment(dest);
-  const auto match_start = std::chrono::steady_clock::now();
-
-  auto configure = [&](areamatch::MatcherParams& p) {
-    p.allow_reflection = args.flag("allow-reflection");
-    if (k) p.k = static_cast<std::size_t>(*k);
-    if (min_score) p.min_score = *min_score;
-  };
-  areamatch::MatchResult result;
-  if (args.flag("paper")) {
-    areamatch::PaperMatcher matcher;
-    configure(matcher.params);
-    result = matcher.match(source, source_graph, dest, dest_graph);
-  } else {
-    areamatch::Matcher<> matcher;
-    configure(matcher.params);
-    result = matcher.match(source, source_graph, dest, dest_graph);
-  }
-  using seconds = std::chrono::duration<double>;
-  const auto end = std::chrono::steady_clock::now();
-  result.timings.segment_source_s = seconds(dest_start - segment_start).count();
-  result.timings.segment_dest_s = seconds(match_start - dest_start).count();
-  result.timings.match_s = seconds(end - match_start).count();
-  result.timings.total_s = seconds(end - start).count();
+  const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
+  const auto& [source, dest, source_graph, dest_graph, result] = run;
 
   if (const auto png = args.text("png")) {
-    areamatch::write_png(*png, areamatch::side_by_side(areamatch::render_match_source(source, source_graph, result),
-                                                       areamatch::render_match_overlay(source, dest, dest_graph, result)));
+    areamatch::write_png(*png, areamatch::render_match(source, source_graph, dest, dest_graph, result));
   }
   if (const auto svg = args.text("svg")) {
     areamatch::write_text_file(*svg, areamatch::overlay_svg(areamatch::render_match_overlay(source, dest, dest_graph, result),
@@ -371,6 +345,119 @@ int run_match(const std::vector<std::string>& tokens) {
   return 0;
 }
 
+// ---------------------------------------------------------------------------------------- eval
+
+const char* kEvalHelp =
+    "usage: areamatch eval MANIFEST [options]\n"
+    "Matches every pair of a manifest (the format of shared/pairs.json; paths relative to it) and prints\n"
+    "a table: areas, segmentation/matching/total times, the transform, and with ground truth the\n"
+    "rotation error, the mean displacement of the source's free-space edge and whether it is correct\n"
+    "by the manifest's correct_if (as shared/tools/score.py judges). Summary lines follow.\n"
+    "Exit status: 0 when it ran (wrong matches are data, not failure), 2 on a bad manifest or a pair\n"
+    "whose maps cannot be read (the other pairs still run).\n"
+    "Options:\n"
+    "  --out DIR          write DIR/results.json, DIR/results.csv, DIR/report.md and DIR/pairs/*.png\n"
+    "  --repeat N         run each pair N times: median times, and a check that results agree bit for bit\n"
+    "  --only A,B         only the pairs with these names\n"
+    "  --no-reflection    do not try mirror images (a pair's \"allow_reflection\" overrides either way)\n"
+    "  --paper            the paper's matching as written\n"
+    "  --k N              mutual nearest neighbours per area (default 10; paper 3)\n"
+    "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
+    "  --picture-scale F  shrink pictures by this integer factor (default: to at most 2000 px wide)\n"
+    "Per pair, the manifest may give door_width_m, source_resolution, destination_resolution,\n"
+    "allow_reflection and ambiguous (reported, and counted apart in the summary).\n";
+
+std::vector<std::string> split_names(const std::string& list) {
+  std::vector<std::string> names;
+  std::string::size_type start = 0;
+  while (start <= list.size()) {
+    const auto comma = std::min(list.find(',', start), list.size());
+    if (comma > start) names.push_back(list.substr(start, comma - start));
+    start = comma + 1;
+  }
+  return names;
+}
+
+/// A file name for a pair's picture: its index (names may differ only in characters a file name
+/// cannot hold) and its name with anything but letters, digits, '-', '_' and '.' replaced.
+std::string picture_name(std::size_t index, const std::string& pair_name) {
+  std::string safe;
+  for (char c : pair_name) safe += (std::isalnum(static_cast<unsigned char>(c)) || c == '-' || c == '_' || c == '.') ? c : '_';
+  char prefix[32];
+  std::snprintf(prefix, sizeof prefix, "%03zu_", index + 1);
+  return prefix + safe + ".png";
+}
+
+int run_eval(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"no-reflection", "paper", "help"}, {"out", "repeat", "only", "k", "min-score", "picture-scale"});
+  if (args.flag("help")) {
+    std::cout << kEvalHelp;
+    return 0;
+  }
+  args.expect_positional(1, "MANIFEST");
+  areamatch::EvalOptions options;
+  options.repeat = static_cast<int>(args.integer("repeat", 1, 1000).value_or(1));
+  options.matching.paper = args.flag("paper");
+  options.matching.allow_reflection = !args.flag("no-reflection");
+  if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
+  options.matching.min_score = args.number("min-score", false, true);
+  const auto picture_scale = args.integer("picture-scale", 1, 100);
+  const auto out = args.text("out");
+
+  areamatch::Manifest manifest = areamatch::load_manifest(args.positional()[0]);
+  if (const auto only = args.text("only")) {
+    const auto names = split_names(*only);
+    for (const auto& name : names) {
+      if (std::none_of(manifest.pairs.begin(), manifest.pairs.end(), [&](const auto& p) { return p.name == name; })) {
+        throw UsageError("--only: no pair named '" + name + "' in " + manifest.path);
+      }
+    }
+    manifest.pairs.erase(std::remove_if(manifest.pairs.begin(), manifest.pairs.end(),
+                                        [&](const auto& p) { return std::find(names.begin(), names.end(), p.name) == names.end(); }),
+                         manifest.pairs.end());
+  }
+  areamatch::check_manifest_files(manifest);
+  if (out) {
+    std::error_code ec;
+    std::filesystem::create_directories(*out + "/pairs", ec);
+    if (ec) throw areamatch::io_error(*out + ": cannot create folder (" + ec.message() + ")");
+  }
+
+  std::vector<areamatch::PairEvaluation> rows;
+  std::vector<std::string> pictures;
+  for (std::size_t i = 0; i < manifest.pairs.size(); ++i) {
+    const auto& pair = manifest.pairs[i];
+    areamatch::MapPairRun run;
+    rows.push_back(areamatch::evaluate_pair(pair, manifest.correct_if, options, out ? &run : nullptr));
+    const auto& row = rows.back();
+    std::cerr << "[" << i + 1 << "/" << manifest.pairs.size() << "] " << pair.name << ": "
+              << (!row.failure.empty() ? "error" : row.error ? (row.correct ? "correct" : "WRONG") : (row.result.ok ? "matched" : "no match"))
+              << ", " << format_fixed(1000.0 * row.timings.total_s, 1) << " ms\n";
+    pictures.emplace_back();
+    if (out && row.failure.empty()) {
+      const auto picture = areamatch::render_match(run.source, run.source_graph, run.dest, run.dest_graph, row.result);
+      constexpr int max_picture_width = 2000;
+      const int factor = picture_scale ? static_cast<int>(*picture_scale) : (picture.width + max_picture_width - 1) / max_picture_width;
+      pictures.back() = "pairs/" + picture_name(i, pair.name);
+      areamatch::write_png(*out + "/" + pictures.back(), areamatch::downscaled(picture, factor));
+    }
+  }
+  const auto summary = areamatch::summarize(rows);
+  std::cout << areamatch::eval_table(rows, summary);
+  if (out) {
+    areamatch::write_text_file(*out + "/results.json", areamatch::eval_json(manifest, rows, summary));
+    areamatch::write_text_file(*out + "/results.csv", areamatch::eval_csv(rows));
+    areamatch::write_text_file(*out + "/report.md", areamatch::eval_markdown(manifest, rows, summary, pictures));
+    std::cout << "wrote " << *out << "/report.md, results.json, results.csv and " << summary.pairs - summary.failed
+              << " pictures in " << *out << "/pairs\n";
+  }
+  if (summary.failed > 0) {
+    std::cerr << "areamatch eval: " << summary.failed << " pair(s) could not run (see the errors above)\n";
+    return 2;
+  }
+  return 0;
+}
+
 // ---------------------------------------------------------------------------------------- main
 
 const char* kMainHelp =
@@ -380,6 +467,7 @@ const char* kMainHelp =
     "  info MAP          size, resolution, origin and free/occupied/unknown fractions of a map\n"
     "  segment MAP       split a map into areas and passages (its Area Graph), with pictures\n"
     "  match SOURCE DEST find the transform between two maps of one building\n"
+    "  eval MANIFEST     match every pair of a manifest and score it against its ground truth\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
     "  version           print the version\n"
     "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n";
@@ -393,7 +481,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}};
+      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}, {"eval", run_eval}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -203,4 +203,40 @@ inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, int ga
   return out;
 }
 
+/// The picture `areamatch match --png` and `areamatch eval` write: the source with matched areas
+/// tinted, beside the destination with the source's walls laid over it.
+inline RgbImage render_match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
+                             const AreaGraph& dest_graph, const MatchResult& result, const MapColors& colors = {}) {
+  return side_by_side(render_match_source(source, source_graph, result, colors),
+                      render_match_overlay(source, dest, dest_graph, result, colors));
+}
+
+/// `image` shrunk by an integer `factor` (≥ 1). Each block becomes its mean colour, unless it
+/// holds a strongly coloured pixel (an overlay line one pixel thin), which then wins, so that
+/// thin coloured lines survive the shrinking instead of fading into the background.
+inline RgbImage downscaled(const RgbImage& image, int factor) {
+  if (factor <= 1) return image;
+  RgbImage out((image.width + factor - 1) / factor, (image.height + factor - 1) / factor);
+  for (int r = 0; r < out.height; ++r) {
+    for (int c = 0; c < out.width; ++c) {
+      int sum[3] = {0, 0, 0}, count = 0, best_chroma = -1;
+      const std::uint8_t* best = nullptr;
+      for (int y = r * factor; y < std::min(image.height, (r + 1) * factor); ++y) {
+        for (int x = c * factor; x < std::min(image.width, (c + 1) * factor); ++x) {
+          const std::uint8_t* p = &image.rgb[(static_cast<std::size_t>(y) * image.width + x) * 3];
+          for (int k = 0; k < 3; ++k) sum[k] += p[k];
+          ++count;
+          const int chroma = std::max({p[0], p[1], p[2]}) - std::min({p[0], p[1], p[2]});
+          if (chroma > best_chroma) best_chroma = chroma, best = p;
+        }
+      }
+      constexpr int strong_chroma = 150;
+      if (best_chroma >= strong_chroma) out.set(c, r, best[0], best[1], best[2]);
+      else out.set(c, r, static_cast<std::uint8_t>(sum[0] / count), static_cast<std::uint8_t>(sum[1] / count),
+                   static_cast<std::uint8_t>(sum[2] / count));
+    }
+  }
+  return out;
+}
+
 }  // namespace areamatch

@@ -6,10 +6,15 @@
 ///     {"correct_if": {"max_rotation_error_deg": 3.0, "max_mean_displacement_m": 1.0},
 ///      "pairs": [{"name": "...", "source": "maps/a.yaml", "destination": "maps/b.yaml",
 ///                 "ground_truth": {"pixel_transform": [[a, b, tx], [c, d, ty]], ...},
-///                 "door_width_m": 1.2, "ambiguous": false, "kind": "...", "note": "..."}]}
+///                 "door_width_m": 1.2, "ambiguous": false, "kind": "...", "note": "...",
+///                 "source_resolution": 0.05, "destination_resolution": 0.05,
+///                 "allow_reflection": true}]}
 ///
-/// Map paths are relative to the manifest's folder unless absolute. `ground_truth`,
-/// `door_width_m`, `ambiguous`, `kind`, `note` and `correct_if` are optional.
+/// Map paths are relative to the manifest's folder unless absolute. Everything but `name`,
+/// `source` and `destination` is optional; `*_resolution` (m/pixel) override what the map's YAML
+/// says (needed for bare images). A manifest gives a ground truth for every pair or for none:
+/// a pair without one among pairs with one is an error, since a silently unscored pair would
+/// skew the correct count.
 
 #include "../error.hpp"
 #include "../evaluation.hpp"
@@ -17,6 +22,9 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <optional>
 #include <set>
 #include <string>
@@ -31,6 +39,9 @@ struct ManifestPair {
   std::string destination;
   std::optional<PixelTransform> ground_truth;  ///< source pixel → destination pixel
   std::optional<double> door_width_m;
+  std::optional<double> source_resolution;       ///< overrides the source YAML's resolution
+  std::optional<double> destination_resolution;
+  std::optional<bool> allow_reflection;          ///< overrides the evaluation's default
   bool ambiguous = false;
 };
 
@@ -56,6 +67,20 @@ inline double manifest_number(const YAML::Node& node, const std::string& where) 
   } catch (const YAML::Exception&) {
     throw format_error(where + " must be a number");
   }
+}
+
+inline bool manifest_bool(const YAML::Node& node, const std::string& where) {
+  try {
+    return node.as<bool>();
+  } catch (const YAML::Exception&) {
+    throw format_error(where + " must be true or false");
+  }
+}
+
+inline double manifest_positive(const YAML::Node& node, const std::string& where) {
+  const double value = manifest_number(node, where);
+  if (!(value > 0.0)) throw format_error(where + " must be positive");
+  return value;
 }
 
 inline std::string manifest_text(const YAML::Node& node, const std::string& where) {
@@ -103,18 +128,15 @@ inline Manifest load_manifest(const std::string& path) {
     if (p["kind"]) pair.kind = detail::manifest_text(p["kind"], where + ": kind");
     pair.source = detail::resolve_relative(path, detail::manifest_text(p["source"], where + ": source"));
     pair.destination = detail::resolve_relative(path, detail::manifest_text(p["destination"], where + ": destination"));
-    if (p["door_width_m"]) {
-      const double w = detail::manifest_number(p["door_width_m"], where + ": door_width_m");
-      if (!(w > 0.0)) throw format_error(where + ": door_width_m must be positive");
-      pair.door_width_m = w;
+    if (p["door_width_m"]) pair.door_width_m = detail::manifest_positive(p["door_width_m"], where + ": door_width_m");
+    if (p["source_resolution"]) {
+      pair.source_resolution = detail::manifest_positive(p["source_resolution"], where + ": source_resolution");
     }
-    if (p["ambiguous"]) {
-      try {
-        pair.ambiguous = p["ambiguous"].as<bool>();
-      } catch (const YAML::Exception&) {
-        throw format_error(where + ": ambiguous must be true or false");
-      }
+    if (p["destination_resolution"]) {
+      pair.destination_resolution = detail::manifest_positive(p["destination_resolution"], where + ": destination_resolution");
     }
+    if (p["allow_reflection"]) pair.allow_reflection = detail::manifest_bool(p["allow_reflection"], where + ": allow_reflection");
+    if (p["ambiguous"]) pair.ambiguous = detail::manifest_bool(p["ambiguous"], where + ": ambiguous");
     if (const YAML::Node g = p["ground_truth"]) {
       const YAML::Node t = g.IsMap() ? g["pixel_transform"] : YAML::Node();
       if (!t || !t.IsSequence() || t.size() != 2 || !t[0].IsSequence() || !t[1].IsSequence() || t[0].size() != 3 ||
@@ -128,7 +150,31 @@ inline Manifest load_manifest(const std::string& path) {
     }
     m.pairs.push_back(std::move(pair));
   }
+  if (m.pairs.empty()) throw format_error(path + ": \"pairs\" is empty");
+  for (const ManifestPair& pair : m.pairs) {
+    if (pair.ground_truth.has_value() != m.pairs.front().ground_truth.has_value()) {
+      const ManifestPair& without = pair.ground_truth ? m.pairs.front() : pair;
+      throw format_error(path + ": pair '" + without.name + "': ground_truth missing (other pairs have one; give " +
+                         "every pair a ground truth or none)");
+    }
+  }
   return m;
+}
+
+/// Throws `io_error` naming the pair and field when a pair's source or destination file does
+/// not exist or cannot be opened, so that a long evaluation does not stop half-way on a typo.
+inline void check_manifest_files(const Manifest& m) {
+  for (const ManifestPair& pair : m.pairs) {
+    for (const auto& [field, file] : {std::pair{"source", &pair.source}, std::pair{"destination", &pair.destination}}) {
+      std::error_code ec;
+      const bool exists = std::filesystem::exists(*file, ec);
+      std::ifstream in(*file, std::ios::binary);
+      if (!exists || !in || !std::filesystem::is_regular_file(*file, ec)) {
+        throw io_error(m.path + ": pair '" + pair.name + "': " + field + " " + *file +
+                       (exists ? " is not a readable file" : " does not exist"));
+      }
+    }
+  }
 }
 
 }  // namespace areamatch
