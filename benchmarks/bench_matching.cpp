@@ -1,16 +1,21 @@
-// Matching speed. Per pair of ../shared/pairs.json (when present), as in the paper's setting
-// (YAML resolutions, the pair's door width, reflection allowed):
-//   match/<pair>   the matching stage alone, on Area Graphs segmented beforehand
-//   pair/<pair>    the whole pair: load both map files, segment both, match
-// and the matching stage on synthetic pairs of growing size (10 m to 200 m square).
+// Matching speed, per pair of ../shared/pairs.json (when present; YAML resolutions, the pair's
+// door width, reflection allowed, as `areamatch eval` runs them) and per synthetic pair of
+// growing size (10 m to 200 m square, seed 1):
+//   match/<pair>   the matching stage alone on Area Graphs segmented beforehand; counters give
+//                  the mean time of each stage inside it (features = descriptors + costs +
+//                  mutual pairs, hypotheses, clustering, selection = verification + refinement)
+//   pair/<pair>    the whole pair: segment both maps and match (shared pairs: load the files too)
+// Pairs are prepared on first use, so a --benchmark_filter run pays only for what it selects.
 //   build/benchmarks/bench_matching --benchmark_out=matching.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
 #include <areamatch/io.hpp>
-#include <areamatch/io/manifest.hpp>
+#include <areamatch/io/evaluate.hpp>
 
 #include <benchmark/benchmark.h>
 
+#include <functional>
 #include <memory>
+#include <optional>
 #include <string>
 
 namespace {
@@ -18,70 +23,111 @@ namespace {
 struct Prepared {
   areamatch::OccupancyGrid source, dest;
   areamatch::AreaGraph source_graph, dest_graph;
-  areamatch::Matcher<> matcher;
+  areamatch::MapPairOptions options;
 };
 
-void match_stage(benchmark::State& state, const Prepared& p) {
-  areamatch::MatchResult result;
-  for (auto _ : state) {
-    result = p.matcher.match(p.source, p.source_graph, p.dest, p.dest_graph);
-    benchmark::DoNotOptimize(result.score);
+/// Builds its pair the first time it is asked for it.
+class LazyPair {
+ public:
+  explicit LazyPair(std::function<Prepared()> make) : make_(std::move(make)) {}
+  const Prepared& get() {
+    if (!prepared_) prepared_ = make_();
+    return *prepared_;
   }
+
+ private:
+  std::function<Prepared()> make_;
+  std::optional<Prepared> prepared_;
+};
+
+areamatch::Matcher<> matcher_for(const areamatch::MapPairOptions& options) {
+  areamatch::Matcher<> matcher;
+  matcher.params.allow_reflection = options.allow_reflection;
+  return matcher;
+}
+
+void match_stage(benchmark::State& state, const Prepared& p) {
+  const auto matcher = matcher_for(p.options);
+  areamatch::MatchResult result;
+  areamatch::MatchTimings sum;
+  for (auto _ : state) {
+    result = matcher.match(p.source, p.source_graph, p.dest, p.dest_graph);
+    benchmark::DoNotOptimize(result.score);
+    sum.features_s += result.timings.features_s;
+    sum.hypotheses_s += result.timings.hypotheses_s;
+    sum.clustering_s += result.timings.clustering_s;
+    sum.selection_s += result.timings.selection_s;
+  }
+  const double n = static_cast<double>(state.iterations());
+  state.counters["features_ms"] = 1000.0 * sum.features_s / n;
+  state.counters["hypotheses_ms"] = 1000.0 * sum.hypotheses_s / n;
+  state.counters["clustering_ms"] = 1000.0 * sum.clustering_s / n;
+  state.counters["selection_ms"] = 1000.0 * sum.selection_s / n;
   state.counters["hypotheses"] = static_cast<double>(result.statistics.hypotheses);
   state.counters["areas"] = static_cast<double>(result.statistics.source_areas + result.statistics.dest_areas);
 }
 
-std::shared_ptr<Prepared> prepare(areamatch::OccupancyGrid source, areamatch::OccupancyGrid dest,
-                                  const areamatch::Matcher<>& matcher) {
-  auto p = std::make_shared<Prepared>();
-  p->source = std::move(source);
-  p->dest = std::move(dest);
-  p->matcher = matcher;
-  p->source_graph = matcher.segmenter.segment(p->source);
-  p->dest_graph = matcher.segmenter.segment(p->dest);
-  return p;
+/// Segmentation of both maps plus matching, from grids in memory.
+void whole_pair_in_memory(benchmark::State& state, const Prepared& p) {
+  const auto matcher = matcher_for(p.options);
+  for (auto _ : state) {
+    const auto result = matcher.match(p.source, p.dest);
+    benchmark::DoNotOptimize(result.score);
+  }
+  state.counters["cells"] = static_cast<double>(p.source.width()) * p.source.height() +
+                            static_cast<double>(p.dest.width()) * p.dest.height();
+}
+
+void register_pair(const std::string& name, std::function<Prepared()> make,
+                   std::function<void(benchmark::State&, const Prepared&)> whole_pair) {
+  auto lazy = std::make_shared<LazyPair>(std::move(make));
+  benchmark::RegisterBenchmark(("match/" + name).c_str(), [lazy](benchmark::State& state) { match_stage(state, lazy->get()); })
+      ->Unit(benchmark::kMillisecond);
+  benchmark::RegisterBenchmark(("pair/" + name).c_str(), [lazy, whole_pair](benchmark::State& state) {
+    whole_pair(state, lazy->get());
+  })->Unit(benchmark::kMillisecond);
 }
 
 void register_synthetic() {
   for (int side : {10, 25, 50, 100, 200}) {
-    areamatch::BuildingParams building_params;
-    building_params.width_m = side;
-    building_params.height_m = side;
-    const auto building = areamatch::generate_building(building_params, 1);
-    areamatch::RobotMapParams robot_params;
-    robot_params.rotation_rad = 1.0;
-    robot_params.max_clutter_per_room = 2;
-    const auto robot = areamatch::make_robot_map(building, robot_params, 1);
-    areamatch::Matcher<> matcher;
-    matcher.params.allow_reflection = true;
-    auto p = prepare(robot.grid, building.layout, matcher);
-    benchmark::RegisterBenchmark(("match/synthetic_" + std::to_string(side) + "m").c_str(),
-                                 [p](benchmark::State& state) { match_stage(state, *p); })
-        ->Unit(benchmark::kMillisecond);
+    register_pair("synthetic_" + std::to_string(side) + "m", [side] {
+      areamatch::BuildingParams building_params;
+      building_params.width_m = side;
+      building_params.height_m = side;
+      const auto building = areamatch::generate_building(building_params, 1);
+      areamatch::RobotMapParams robot_params;
+      robot_params.rotation_rad = 1.0;
+      robot_params.max_clutter_per_room = 2;
+      Prepared p;
+      p.source = areamatch::make_robot_map(building, robot_params, 1).grid;
+      p.dest = building.layout;
+      p.options.allow_reflection = true;
+      const auto matcher = matcher_for(p.options);
+      p.source_graph = matcher.segmenter.segment(p.source);
+      p.dest_graph = matcher.segmenter.segment(p.dest);
+      return p;
+    }, whole_pair_in_memory);
   }
 }
 
 void register_shared_pairs() {
-  const std::string manifest_path = std::string(AREAMATCH_SHARED_DIR) + "/pairs.json";
   areamatch::Manifest manifest;
   try {
-    manifest = areamatch::load_manifest(manifest_path);
+    manifest = areamatch::load_manifest(std::string(AREAMATCH_SHARED_DIR) + "/pairs.json");
   } catch (const areamatch::io_error&) {
     return;  // no shared data: synthetic benchmarks only
   }
   for (const auto& pair : manifest.pairs) {
-    areamatch::Matcher<> matcher;
-    matcher.params.allow_reflection = true;
-    if (pair.door_width_m) matcher.segmenter.params.with_door_width(*pair.door_width_m);
-    auto p = prepare(areamatch::load_map(pair.source), areamatch::load_map(pair.destination), matcher);
-    benchmark::RegisterBenchmark(("match/" + pair.name).c_str(), [p](benchmark::State& state) { match_stage(state, *p); })
-        ->Unit(benchmark::kMillisecond);
-    benchmark::RegisterBenchmark(("pair/" + pair.name).c_str(), [pair, matcher](benchmark::State& state) {
+    const auto options = areamatch::pair_options(pair, areamatch::EvalOptions{});
+    register_pair(pair.name, [pair, options] {
+      const auto run = areamatch::match_map_files(pair.source, pair.destination, options);
+      return Prepared{run.source, run.dest, run.source_graph, run.dest_graph, options};
+    }, [pair, options](benchmark::State& state, const Prepared&) {
       for (auto _ : state) {
-        const auto result = matcher.match(areamatch::load_map(pair.source), areamatch::load_map(pair.destination));
-        benchmark::DoNotOptimize(result.score);
+        const auto run = areamatch::match_map_files(pair.source, pair.destination, options);
+        benchmark::DoNotOptimize(run.result.score);
       }
-    })->Unit(benchmark::kMillisecond);
+    });
   }
 }
 

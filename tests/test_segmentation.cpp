@@ -156,6 +156,28 @@ TEST_CASE("synthetic buildings: every room is one area, every door one passage n
   CHECK(doors_found == doors);
 }
 
+TEST_CASE("a door exactly as wide as the door width is a passage") {
+  // The door width is the widest opening that still separates: drawn at exactly W on the grid,
+  // a door measures up to one cell more, which the parameter's slack absorbs.
+  for (double door : {0.8, 0.9, 1.0}) {
+    for (double resolution : {0.04, 0.05}) {
+      BuildingParams params;
+      params.door_width_m = door;
+      params.resolution = resolution;
+      const auto building = generate_building(params, 3);
+      VoronoiSegmenter segmenter;
+      segmenter.params.with_door_width(door);
+      const AreaGraph graph = segmenter.segment(building.layout);
+      INFO("door " << door << " m, cells " << resolution << " m");
+      std::size_t found = 0;
+      for (const auto& d : building.doors) {
+        for (const auto& p : graph.passages) found += (p.position - d.position).norm() <= 0.3;
+      }
+      CHECK(found == building.doors.size());
+    }
+  }
+}
+
 TEST_CASE("robot maps with furniture and noise: rooms still found (tolerance 10 %)") {
   std::size_t rooms = 0, rooms_found = 0;
   for (std::uint64_t seed = 1; seed <= 4; ++seed) {

@@ -17,6 +17,7 @@
 
 #include <algorithm>
 #include <cctype>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <functional>
@@ -146,32 +147,10 @@ std::string matrix_json(const areamatch::PixelTransform& m) {
          format_double(m(1, 0)) + ", " + format_double(m(1, 1)) + ", " + format_double(m(1, 2)) + "]]";
 }
 
-int run_generate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"mirror", "help"},
-                  {"seed", "width", "height", "layout", "door-width", "rotation", "robot-resolution", "noise",
-                   "clutter", "explored", "speckles"});
-  if (args.flag("help")) {
-    std::cout << kGenerateHelp;
-    return 0;
-  }
-  args.expect_positional(1, "OUTDIR");
-  const std::string out = args.positional()[0];
-  const auto seed = static_cast<std::uint64_t>(args.integer("seed", 0, 1LL << 62).value_or(1));
-
-  areamatch::BuildingParams building_params;
-  building_params.width_m = args.number("width", true).value_or(30.0);
-  building_params.height_m = args.number("height", true).value_or(20.0);
-  building_params.door_width_m = args.number("door-width", true).value_or(0.9);
-  building_params.layout = parse_layout(args.text("layout").value_or("auto"));
-  areamatch::RobotMapParams robot_params;
-  robot_params.rotation_rad = args.number("rotation").value_or(37.0) * areamatch::pi / 180.0;
-  robot_params.mirror = args.flag("mirror");
-  robot_params.resolution = args.number("robot-resolution", true).value_or(0.05);
-  robot_params.wall_noise_m = args.number("noise", false, true).value_or(0.03);
-  robot_params.max_clutter_per_room = static_cast<int>(args.integer("clutter", 0, 100).value_or(3));
-  robot_params.explored_fraction = args.number("explored", false, true).value_or(1.0);
-  robot_params.speckle_per_m2 = args.number("speckles", false, true).value_or(0.02);
-
+/// Writes one synthetic pair into `out` and returns its manifest entry (paths relative to
+/// `out`'s parent when `prefix` names `out`, else to `out`).
+std::string generate_pair(const std::string& out, const std::string& prefix, std::uint64_t seed,
+                          const areamatch::BuildingParams& building_params, const areamatch::RobotMapParams& robot_params) {
   const auto building = areamatch::generate_building(building_params, seed);
   const auto robot = areamatch::make_robot_map(building, robot_params, seed);
 
@@ -186,21 +165,63 @@ int run_generate(const std::vector<std::string>& tokens) {
   areamatch::write_png(out + "/overlay.png", areamatch::render_overlay(building.layout, robot.grid, robot.T_dest_source));
   areamatch::write_text_file(out + "/overlay.svg", areamatch::overlay_svg(building.layout, robot.grid, robot.T_dest_source));
 
-  std::ostringstream manifest;
-  manifest << "{\n \"description\": \"Synthetic pair written by 'areamatch generate' (seed " << seed
-           << "). pixel_transform maps a source pixel (col, row) to a destination pixel.\",\n"
-           << " \"correct_if\": {\"max_rotation_error_deg\": 3.0, \"max_mean_displacement_m\": 0.5},\n"
-           << " \"pairs\": [\n  {\n   \"name\": \"synthetic_" << seed << "\",\n   \"kind\": \"synthetic\",\n"
-           << "   \"source\": \"robot.yaml\",\n   \"destination\": \"layout.yaml\",\n"
-           << "   \"door_width_m\": " << format_double(building_params.door_width_m) << ",\n"
-           << "   \"ground_truth\": {\"pixel_transform\": " << matrix_json(robot.pixel_transform)
-           << ", \"scale\": " << format_double(robot_params.resolution / building_params.resolution)
-           << ", \"reflected\": " << (robot.T_dest_source.reflected ? "true" : "false") << "}\n  }\n ]\n}\n";
-  areamatch::write_text_file(out + "/pairs.json", manifest.str());
-
   std::cout << "wrote " << out << ": layout " << building.layout.width() << "x" << building.layout.height() << " ("
             << building.areas.size() << " areas, " << building.doors.size() << " doors), robot map "
-            << robot.grid.width() << "x" << robot.grid.height() << ", ground truth in pairs.json\n";
+            << robot.grid.width() << "x" << robot.grid.height() << "\n";
+  std::ostringstream entry;
+  entry << "  {\n   \"name\": \"synthetic_" << seed << "\",\n   \"kind\": \"synthetic\",\n"
+        << "   \"source\": \"" << prefix << "robot.yaml\",\n   \"destination\": \"" << prefix << "layout.yaml\",\n"
+        << "   \"door_width_m\": " << format_double(building_params.door_width_m) << ",\n"
+        << "   \"ground_truth\": {\"pixel_transform\": " << matrix_json(robot.pixel_transform)
+        << ", \"scale\": " << format_double(robot_params.resolution / building_params.resolution)
+        << ", \"reflected\": " << (robot.T_dest_source.reflected ? "true" : "false") << "}\n  }";
+  return entry.str();
+}
+
+int run_generate(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"mirror", "help"},
+                  {"seed", "count", "width", "height", "layout", "door-width", "rotation", "robot-resolution", "noise",
+                   "clutter", "explored", "speckles"});
+  if (args.flag("help")) {
+    std::cout << kGenerateHelp;
+    return 0;
+  }
+  args.expect_positional(1, "OUTDIR");
+  const std::string out = args.positional()[0];
+  const auto first_seed = static_cast<std::uint64_t>(args.integer("seed", 0, 1LL << 62).value_or(1));
+  const auto count = args.integer("count", 1, 10000);
+
+  areamatch::BuildingParams building_params;
+  building_params.width_m = args.number("width", true).value_or(30.0);
+  building_params.height_m = args.number("height", true).value_or(20.0);
+  building_params.door_width_m = args.number("door-width", true).value_or(0.9);
+  building_params.layout = parse_layout(args.text("layout").value_or("auto"));
+  areamatch::RobotMapParams robot_params;
+  const auto rotation_deg = args.number("rotation");
+  robot_params.mirror = args.flag("mirror");
+  robot_params.resolution = args.number("robot-resolution", true).value_or(0.05);
+  robot_params.wall_noise_m = args.number("noise", false, true).value_or(0.03);
+  robot_params.max_clutter_per_room = static_cast<int>(args.integer("clutter", 0, 100).value_or(3));
+  robot_params.explored_fraction = args.number("explored", false, true).value_or(1.0);
+  robot_params.speckle_per_m2 = args.number("speckles", false, true).value_or(0.02);
+
+  std::vector<std::string> entries;
+  for (std::uint64_t seed = first_seed; seed < first_seed + static_cast<std::uint64_t>(count.value_or(1)); ++seed) {
+    // A set turns each robot map differently (golden-angle steps) unless --rotation is given.
+    const double deg = rotation_deg ? *rotation_deg : count ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
+    robot_params.rotation_rad = deg * areamatch::pi / 180.0;
+    const std::string folder = "pair_" + std::to_string(seed);
+    entries.push_back(count ? generate_pair(out + "/" + folder, folder + "/", seed, building_params, robot_params)
+                            : generate_pair(out, "", seed, building_params, robot_params));
+  }
+  std::ostringstream manifest;
+  manifest << "{\n \"description\": \"Synthetic pairs written by 'areamatch generate'. pixel_transform maps a source "
+           << "pixel (col, row) to a destination pixel.\",\n"
+           << " \"correct_if\": {\"max_rotation_error_deg\": 3.0, \"max_mean_displacement_m\": 0.5},\n \"pairs\": [\n";
+  for (std::size_t i = 0; i < entries.size(); ++i) manifest << entries[i] << (i + 1 < entries.size() ? ",\n" : "\n");
+  manifest << " ]\n}\n";
+  areamatch::write_text_file(out + "/pairs.json", manifest.str());
+  std::cout << "ground truth of " << entries.size() << " pair(s) in " << out << "/pairs.json\n";
   return 0;
 }
 
@@ -211,7 +232,8 @@ const char* kSegmentHelp =
     "Splits a map into areas (rooms, corridors) joined by passages (doors): its Area Graph.\n"
     "Prints one summary line; exit status 1 when the map has no areas.\n"
     "Options:\n"
-    "  --door-width M     widest opening that still separates two areas, metres (default 1.25)\n"
+    "  --door-width M     widest opening that still separates two areas, metres, plus one cell of slack\n"
+    "                     (default 1.2: openings up to 1.25 m at 0.05 m cells)\n"
     "  --min-area M2      areas smaller than this merge into a neighbour (default 1.0 m^2)\n"
     "  --room-margin M    a room must be this much wider than a door somewhere (default 0.05 m)\n"
     "  --simplify M       how far simplified walls may stray from the pixel boundary (default 0.1 m)\n"
@@ -281,7 +303,7 @@ const char* kMatchHelp =
     "Options:\n"
     "  --source-resolution R   metres per pixel of SOURCE (default: its YAML, else 0.05)\n"
     "  --dest-resolution R     metres per pixel of DEST (default: its YAML, else 0.05)\n"
-    "  --door-width M          door width for both maps, metres (default 1.25)\n"
+    "  --door-width M          door width for both maps, metres (default 1.2, see segment --help)\n"
     "  --source-door-width M   door width of SOURCE only (with --dest-door-width; not with --door-width)\n"
     "  --dest-door-width M     door width of DEST only\n"
     "  --allow-reflection      also try the mirror image of SOURCE\n"

@@ -29,8 +29,9 @@ namespace areamatch {
 
 /// Parameters of `detect_rooms`. Lengths in metres.
 struct RoomParams {
-  /// The widest opening that still separates two areas (the paper's segmentation width).
-  double door_width_m = 1.25;
+  /// The widest opening that still separates two areas (the paper's segmentation width). An
+  /// opening measured up to one grid cell wider still counts, so a door of exactly W does.
+  double door_width_m = 1.2;
   /// A wide part is a room only if its clearance exceeds W/2 by this much somewhere.
   double room_margin_m = 0.05;
   /// Narrow parts longer than this (or branching) are areas of their own (narrow corridors).
@@ -147,7 +148,11 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
   out.graph = SampleGraph::from(skeleton);
   const SampleGraph& g = out.graph;
   const std::size_t n = g.samples.size();
-  const double half_door = 0.5 * params.door_width_m / resolution;
+  // An opening of exactly W drawn on the grid measures up to one cell more (quantisation and
+  // wall simplification): half a cell of slack on the clearance keeps such a door a passage.
+  // Rounded to a micro-cell: clearances on the grid are often exact half cells, and which side
+  // of the threshold they fall on must not depend on floating-point noise in W / resolution.
+  const double half_door = std::round((0.5 * params.door_width_m / resolution + 0.5) * 1e6) / 1e6;
   const double margin = params.room_margin_m / resolution;
   const double corridor_length = params.narrow_corridor_length_m / resolution;
   const double search = params.door_search_m / resolution;

@@ -10,8 +10,9 @@
 ///   areas.hpp      labelled free space cut at the passages → area polygons
 ///
 /// The one parameter most maps need is the door width (`params.rooms.door_width_m`, default
-/// 1.25 m, the reference implementation's fallback): the widest opening that still separates
-/// two areas.
+/// 1.2 m): the widest opening that still separates two areas, with one grid cell of slack, so
+/// that a door drawn exactly W wide counts (at 0.05 m cells the default separates openings up
+/// to 1.25 m, the reference implementation's fallback).
 
 #include "../area_graph.hpp"
 #include "../grid.hpp"
@@ -79,7 +80,7 @@ struct VoronoiSegmenter {
     params.areas.validate();
     // Parameters that must agree between stages are derived from one place.
     SkeletonParams skeleton_params = params.skeleton;
-    skeleton_params.keep_clearance_m = 0.5 * params.rooms.door_width_m;
+    skeleton_params.keep_clearance_m = 0.5 * params.rooms.door_width_m + 0.5 * grid.resolution();  // as detect_rooms
     AreaParams area_params = params.areas;
     area_params.min_clearance_m = params.skeleton.min_clearance_m;
 

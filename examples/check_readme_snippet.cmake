@@ -1,0 +1,15 @@
+# Fails unless README.md's ```cpp block equals the lines of examples/quickstart.cpp between
+# README-BEGIN and README-END: the README's example is the one that is compiled and run.
+file(READ "${README}" readme)
+file(READ "${EXAMPLE}" example)
+string(REGEX MATCH "```cpp\n([^`]*)```" _ "${readme}")
+set(snippet "${CMAKE_MATCH_1}")
+string(REGEX MATCH "// README-BEGIN\n(.*)// README-END" _ "${example}")
+set(code "${CMAKE_MATCH_1}")
+if(snippet STREQUAL "" OR code STREQUAL "")
+  message(FATAL_ERROR "no ```cpp block in ${README} or no README-BEGIN/END markers in ${EXAMPLE}")
+endif()
+if(NOT snippet STREQUAL code)
+  message(FATAL_ERROR "README.md's C++ example differs from ${EXAMPLE}; copy it over.\nREADME:\n${snippet}\nexample:\n${code}")
+endif()
+message(STATUS "README.md's C++ example is examples/quickstart.cpp")
