@@ -2,6 +2,7 @@
 """Turns Google Benchmark JSON output of bench_segmentation and bench_matching into
   OUTDIR/benchmarks.csv   one line per benchmark: name, real time (ms), iterations, counters
   OUTDIR/scaling.svg      time against building size for the synthetic buildings (log-log)
+  OUTDIR/benchmarks.md    the tables of docs/performance.md (segmentation per map, matching per pair)
 Standard library only. Usage: plot_benchmarks.py OUTDIR segmentation.json matching.json ..."""
 import csv, json, math, re, sys
 
@@ -9,8 +10,11 @@ import csv, json, math, re, sys
 def load(paths):
     rows, context = [], None
     for path in paths:
-        with open(path) as f:
-            data = json.load(f)
+        try:
+            with open(path) as f:
+                data = json.load(f)
+        except (OSError, ValueError) as e:
+            raise SystemExit(f"cannot read benchmark results {path}: {e}")
         context = context or data.get("context", {})
         for b in data["benchmarks"]:
             if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
@@ -70,8 +74,8 @@ def write_svg(rows, context, path):
         pts = sorted(points[key])
         if not pts:
             continue
-        path = " ".join(f"{X(s):.1f},{Y(t):.1f}" for s, t in pts)
-        out.append(f'<polyline points="{path}" fill="none" stroke="{colour}" stroke-width="2"/>')
+        polyline = " ".join(f"{X(s):.1f},{Y(t):.1f}" for s, t in pts)
+        out.append(f'<polyline points="{polyline}" fill="none" stroke="{colour}" stroke-width="2"/>')
         out += [f'<circle cx="{X(s):.1f}" cy="{Y(t):.1f}" r="3" fill="{colour}"/>' for s, t in pts]
         legend.append((label, colour, False))
     for i, (label, colour, dashed) in enumerate(legend):
@@ -86,6 +90,27 @@ def write_svg(rows, context, path):
         f.write("\n".join(out) + "\n")
 
 
+def write_markdown(rows, path):
+    by_name = {r["name"]: r for r in rows}
+    out = ["## Segmentation (map already loaded)", "", "| map | cells | areas | ms |", "|---|---:|---:|---:|"]
+    for r in rows:
+        if r["name"].startswith("segment/"):
+            out.append(f'| {r["name"][8:]} | {int(r.get("cells", 0))} | {int(r.get("areas", 0))} | {r["real_ms"]:.1f} |')
+    out += ["", "## Matching", "",
+            "| pair | areas | hypotheses | match ms | features | hypotheses | clustering | selection | whole pair ms |",
+            "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
+    for r in rows:
+        if not r["name"].startswith("match/"):
+            continue
+        name = r["name"][6:]
+        whole = by_name.get("pair/" + name)
+        out.append(f'| {name} | {int(r.get("areas", 0))} | {int(r.get("hypotheses", 0))} | {r["real_ms"]:.1f} | '
+                   f'{r.get("features_ms", 0):.1f} | {r.get("hypotheses_ms", 0):.1f} | {r.get("clustering_ms", 0):.1f} | '
+                   f'{r.get("selection_ms", 0):.1f} | {whole["real_ms"]:.1f} |' if whole else "")
+    with open(path, "w") as f:
+        f.write("\n".join(out) + "\n")
+
+
 def main():
     if len(sys.argv) < 3:
         raise SystemExit(__doc__)
@@ -93,7 +118,8 @@ def main():
     rows, context = load(inputs)
     write_csv(rows, f"{outdir}/benchmarks.csv")
     write_svg(rows, context, f"{outdir}/scaling.svg")
-    print(f"wrote {outdir}/benchmarks.csv ({len(rows)} benchmarks) and {outdir}/scaling.svg")
+    write_markdown(rows, f"{outdir}/benchmarks.md")
+    print(f"wrote {outdir}/benchmarks.csv ({len(rows)} benchmarks), benchmarks.md and scaling.svg")
 
 
 if __name__ == "__main__":

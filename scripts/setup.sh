@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Installs what areamatch needs on Debian 12 (skipped when already there), then configures and
-# builds it in Release mode into ./build (or $AREAMATCH_BUILD_DIR). Used by demo.sh and test.sh.
+# builds it in Release mode into ./build (or $AREAMATCH_BUILD_DIR); with --sanitize, a Debug build
+# with AddressSanitizer and UndefinedBehaviorSanitizer instead. Used by demo.sh, test.sh, sanitize.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -18,5 +19,12 @@ if [ ${#missing[@]} -gt 0 ]; then
 fi
 
 build_dir="${AREAMATCH_BUILD_DIR:-build}"
-cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${AREAMATCH_CMAKE_ARGS:-}
+if [ "${1:-}" = "--sanitize" ]; then
+  # ASan + UBSan, every report fatal; -O1 keeps the sanitized test suite fast enough for CI.
+  flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="$flags" \
+        -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DAREAMATCH_BUILD_BENCHMARKS=OFF ${AREAMATCH_CMAKE_ARGS:-}
+else
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${AREAMATCH_CMAKE_ARGS:-}
+fi
 cmake --build "$build_dir" -j "$(nproc)"

@@ -26,6 +26,7 @@
 /// \endcode
 
 #include "area_graph.hpp"
+#include "detail/format.hpp"
 #include "error.hpp"
 #include "grid.hpp"
 #include "match/clusterer.hpp"
@@ -266,7 +267,7 @@ class Matcher {
     if (hypotheses.empty()) {
       return finish("no transform hypothesis: " + std::to_string(pairs.size()) +
                     " mutual area pairs, none overlapping by at least " +
-                    std::to_string(params.hypotheses.min_area_overlap) + " under its own transform");
+                    detail::format_double(params.hypotheses.min_area_overlap) + " under its own transform");
     }
 
     stage = std::chrono::steady_clock::now();
@@ -301,13 +302,13 @@ class Matcher {
     result.matched_areas = matched_areas(source, dest, source_fine, dest_fine, best.T);
 
     if (params.selection == Selection::whole_map && result.score < params.min_score) {
-      return finish("best whole-map score " + std::to_string(result.score) + " is below min_score " +
-                    std::to_string(params.min_score) + ": the maps do not match");
+      return finish("best whole-map score " + detail::format_fixed(result.score, 3) + " is below min_score " +
+                    detail::format_double(params.min_score) + ": the maps do not match");
     }
     result.ambiguous = result.confidence < params.ambiguity_margin;
     if (result.confidence < params.min_confidence) {
-      return finish("ambiguous: a different transform scores within " + std::to_string(result.confidence) +
-                    " of the best (min_confidence " + std::to_string(params.min_confidence) + ")");
+      return finish("ambiguous: a different transform scores within " + detail::format_fixed(result.confidence, 3) +
+                    " of the best (min_confidence " + detail::format_double(params.min_confidence) + ")");
     }
     return finish("");
   }
