@@ -259,3 +259,18 @@ TEST_CASE("eval: bad manifests exit 2 naming the pair and field") {
   CHECK(corrupt.status == 2);
   CHECK(corrupt.out.find("error in a:") != std::string::npos);
 }
+
+TEST_CASE("the same pair matched by 20 processes gives bit-identical JSON (timings aside)") {
+  const std::string dir = areamatch_test::temp_dir() + "/determinism";
+  REQUIRE(run("generate " + dir + " --seed 9 --width 20 --height 14 --rotation 200 --mirror").status == 0);
+  auto without_timings = [](std::string json) {
+    const auto at = json.find(", \"timings\": {");
+    return at == std::string::npos ? json : json.substr(0, at);
+  };
+  const std::string command = "match " + dir + "/robot.yaml " + dir + "/layout.yaml --allow-reflection --json";
+  const Run first = run(command, false);
+  REQUIRE(first.status == 0);
+  const std::string expected = without_timings(first.out);
+  CHECK(expected.find("\"pixel_transform\"") != std::string::npos);
+  for (int i = 1, n = areamatch_test::quick_tests() ? 3 : 20; i < n; ++i) CHECK(without_timings(run(command, false).out) == expected);
+}

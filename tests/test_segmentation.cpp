@@ -6,6 +6,8 @@
 
 #include <doctest/doctest.h>
 
+#include "test_support.hpp"
+
 #include <string>
 #include <vector>
 
@@ -296,7 +298,7 @@ TEST_CASE("degenerate maps give an empty graph or one area, never a crash") {
 TEST_CASE("random maps never crash and always give valid polygons") {
   detail::Random random(2024);
   const VoronoiSegmenter segmenter;
-  for (int trial = 0; trial < 200; ++trial) {
+  for (int trial = 0, trials = areamatch_test::quick_tests() ? 25 : 200; trial < trials; ++trial) {
     const int w = random.integer(20, 90), h = random.integer(20, 90);
     OccupancyGrid g(w, h, 0.05, {}, CellState::free);
     for (int k = random.integer(0, 12); k > 0; --k) {  // random walls

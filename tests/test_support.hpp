@@ -15,6 +15,14 @@ inline bool& shared_skip_flag() {
 }
 inline bool skipped_for_missing_shared() { return shared_skip_flag(); }
 
+/// True in the sanitizer run (scripts/sanitize.sh sets AREAMATCH_QUICK_TESTS=1): unoptimised
+/// code with ASan + UBSan runs ~300 times slower, so the long loops run a few iterations of the
+/// same code instead of all of them (the Release run keeps the full counts).
+inline bool quick_tests() {
+  const char* env = std::getenv("AREAMATCH_QUICK_TESTS");
+  return env && *env && std::string(env) != "0";
+}
+
 inline bool is_dir(const std::string& path) {
   struct stat info {};
   return ::stat(path.c_str(), &info) == 0 && S_ISDIR(info.st_mode);

@@ -41,6 +41,14 @@ class parameter_error : public error {
   using error::error;
 };
 
+/// An input is larger or more complex than a documented resource limit (e.g. more cells than
+/// `max_grid_cells`, more Voronoi sites than `BoundaryParams::max_segments`, more areas than
+/// `MatcherParams::max_areas`). The message names the limit and how to raise it.
+class limit_error : public error {
+ public:
+  using error::error;
+};
+
 namespace detail {
 
 /// Throws `parameter_error` "NAME must be positive and finite, got VALUE" unless value > 0.

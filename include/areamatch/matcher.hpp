@@ -100,6 +100,10 @@ struct MatcherParams {
   double ambiguity_margin = 0.02;
   /// Area pairs overlapping at least this much under the result are reported as matched.
   double min_matched_overlap = 0.5;
+  /// Most areas accepted per map; beyond, `match` throws `limit_error`. The feature costs grow
+  /// with areas_source × areas_dest: a pair of 1550-area maps takes 3.6 s to match on the CI
+  /// machine, so the limit keeps a pair under about 15 s.
+  std::size_t max_areas = 3000;
 
   /// The paper as written (ALGORITHM.md §2): k = 3, one rotation per pair from the passage pair
   /// (or hull diameters), exact OP ≥ 0.5, the largest 3° cluster, Σ OP; no refinement.
@@ -222,6 +226,13 @@ class Matcher {
     const AreaGraph& source = *source_map.graph;
     const AreaGraph& dest = *dest_map.graph;
     params.validate();
+    for (const auto& [graph, which] : {std::pair{&source, "source"}, std::pair{&dest, "destination"}}) {
+      if (graph->areas.size() > params.max_areas) {
+        throw limit_error(std::string("the ") + which + " map has " + std::to_string(graph->areas.size()) +
+                          " areas, more than MatcherParams::max_areas (" + std::to_string(params.max_areas) +
+                          "); raise it (matching time grows with areas_source x areas_dest) or match parts of the map");
+      }
+    }
     const auto start = std::chrono::steady_clock::now();
     MatchResult result;
     result.statistics.source_areas = source.areas.size();

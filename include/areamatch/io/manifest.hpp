@@ -16,6 +16,7 @@
 /// a pair without one among pairs with one is an error, since a silently unscored pair would
 /// skew the correct count.
 
+#include "../detail/file.hpp"
 #include "../error.hpp"
 #include "../evaluation.hpp"
 #include "../transform.hpp"
@@ -90,15 +91,13 @@ inline std::string manifest_text(const YAML::Node& node, const std::string& wher
 
 }  // namespace detail
 
-/// Reads a pairs manifest. Throws `io_error` when the file cannot be read and `format_error`
-/// naming the pair and field when something in it is wrong (missing or mistyped field, duplicate
-/// pair name, a ground truth that is not a 2×3 matrix).
-inline Manifest load_manifest(const std::string& path) {
+/// Parses the text of a pairs manifest; `path` names it in messages and map paths are resolved
+/// against its folder. Throws `format_error` naming the pair and field when something is wrong
+/// (missing or mistyped field, duplicate pair name, a ground truth that is not a 2×3 matrix).
+inline Manifest parse_manifest(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::LoadFile(path);
-  } catch (const YAML::BadFile&) {
-    throw io_error("cannot read manifest " + path);
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw format_error(path + ": not valid JSON/YAML: " + e.what());
   }
@@ -159,6 +158,20 @@ inline Manifest load_manifest(const std::string& path) {
     }
   }
   return m;
+}
+
+/// Reads a pairs manifest (at most 64 MiB). Throws `io_error` when the file cannot be read and
+/// `format_error` as `parse_manifest` does.
+inline Manifest load_manifest(const std::string& path) {
+  std::vector<unsigned char> bytes;
+  try {
+    bytes = detail::read_file_bytes(path, std::size_t(64) << 20);
+  } catch (const format_error& e) {
+    throw format_error(std::string("manifest ") + e.what());
+  } catch (const io_error& e) {
+    throw io_error(std::string("cannot read manifest ") + e.what());
+  }
+  return parse_manifest(std::string(bytes.begin(), bytes.end()), path);
 }
 
 /// Throws `io_error` naming the pair and field when a pair's source or destination file does

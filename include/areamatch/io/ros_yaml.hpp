@@ -54,13 +54,13 @@ inline std::string yaml_quote(const std::string& text) {
 
 }  // namespace detail
 
-/// Reads and checks a map_server YAML. Throws `io_error` when the file cannot be read and
-/// `format_error` (naming the file and the key) when a key is missing or invalid.
-inline MapYaml read_map_yaml(const std::string& path) {
-  const auto bytes = detail::read_file_bytes(path, std::size_t(1) << 20);
+/// Parses and checks the text of a map_server YAML; `path` names it in messages and relative
+/// image paths are resolved against its folder. Throws `format_error` (naming the file and the
+/// key) when a key is missing or invalid.
+inline MapYaml parse_map_yaml(const std::string& text, const std::string& path) {
   YAML::Node root;
   try {
-    root = YAML::Load(std::string(bytes.begin(), bytes.end()));
+    root = YAML::Load(text);
   } catch (const YAML::Exception& e) {
     throw format_error(path + ": not valid YAML (" + e.msg + ")");
   }
@@ -114,6 +114,13 @@ inline MapYaml read_map_yaml(const std::string& path) {
     throw format_error(path + ": " + e.what());
   }
   return meta;
+}
+
+/// Reads and checks a map_server YAML (at most 1 MiB). Throws `io_error` when the file cannot be
+/// read and `format_error` (naming the file and the key) when a key is missing or invalid.
+inline MapYaml read_map_yaml(const std::string& path) {
+  const auto bytes = detail::read_file_bytes(path, std::size_t(1) << 20);
+  return parse_map_yaml(std::string(bytes.begin(), bytes.end()), path);
 }
 
 /// The YAML text for `meta` (numbers written so that they read back exactly).

@@ -51,6 +51,11 @@ struct BoundaryParams {
   /// opening also loses narrow doors next to thin features (SLAM→layout consistency 0.527 →
   /// 0.461 on shared/pairs.json), so it is off by default.
   bool trace_passable_only = false;
+  /// Most Voronoi input segments accepted; beyond, segmenting throws `limit_error` instead of
+  /// running for minutes. Boost.Polygon's builder costs about 56 000 instructions per segment
+  /// (so ~5 s at the limit on the CI machine); the shared maps need at most 5720, a 100 m
+  /// synthetic robot map with noise 27 836.
+  std::size_t max_segments = 250'000;
 
   void validate() const { detail::require_non_negative(simplify_tolerance_m, "BoundaryParams::simplify_tolerance_m"); }
 };

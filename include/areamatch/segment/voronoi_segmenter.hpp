@@ -15,6 +15,7 @@
 /// to 1.25 m, the reference implementation's fallback).
 
 #include "../area_graph.hpp"
+#include "../image.hpp"
 #include "../grid.hpp"
 #include "../segmenter.hpp"
 #include "areas.hpp"
@@ -73,6 +74,10 @@ struct VoronoiSegmenter {
     using clock = std::chrono::steady_clock;
     auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
     if (grid.empty()) throw parameter_error("cannot segment an empty grid");
+    if (static_cast<long long>(grid.width()) * grid.height() > max_grid_cells) {
+      throw limit_error("cannot segment a grid of " + std::to_string(grid.width()) + "x" + std::to_string(grid.height()) +
+                        " cells: more than areamatch::max_grid_cells (" + std::to_string(max_grid_cells) + ")");
+    }
     params.binarize.validate();
     params.boundary.validate();
     params.skeleton.validate();
@@ -96,6 +101,12 @@ struct VoronoiSegmenter {
     const auto t1 = clock::now();
     const BoundarySegments boundary = trace_boundary(passable, res, params.boundary);
     out.boundary_segments = boundary.segments.size();
+    if (boundary.segments.size() > params.boundary.max_segments) {
+      throw limit_error("the map's obstacle boundary has " + std::to_string(boundary.segments.size()) +
+                        " segments, more than BoundaryParams::max_segments (" +
+                        std::to_string(params.boundary.max_segments) +
+                        "): a very noisy map; raise the limit, or simplify more (--simplify) or erase more speckles (--speckle-area)");
+    }
     out.reverted_rings = boundary.reverted_rings;
     const auto t2 = clock::now();
     out.skeleton = build_skeleton(passable, boundary, res, skeleton_params);

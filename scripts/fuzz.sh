@@ -1,0 +1,48 @@
+#!/usr/bin/env bash
+# Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz/ and fuzzes each for
+# SECONDS (default 60), starting from fuzz/corpus/<target> (new inputs go to
+# build-fuzz/corpus/<target>, findings to build-fuzz/findings/<target>/). Fails when a target
+# finds a crash, a sanitizer report, a leak, an input slower than 10 s or one using more than
+# 2 GB. Turn every finding into a regression test: copy it into fuzz/regressions/<target>/,
+# where the test suite replays it (ctest -L fuzz).
+#   scripts/fuzz.sh [SECONDS] [TARGET...]      targets: fuzz_image fuzz_yaml fuzz_segment fuzz_match
+set -euo pipefail
+cd "$(dirname "$0")/.."
+seconds="${1:-60}"
+shift || true
+targets=("$@")
+[ ${#targets[@]} -gt 0 ] || targets=(fuzz_image fuzz_yaml fuzz_segment fuzz_match)
+
+missing=()
+for p in clang libclang-rt-14-dev; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+if [ ${#missing[@]} -gt 0 ]; then
+  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+scripts/setup.sh --deps-only
+
+build=build-fuzz
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DAREAMATCH_BUILD_FUZZERS=ON \
+      -DAREAMATCH_BUILD_TESTS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF -DAREAMATCH_BUILD_BENCHMARKS=OFF \
+      -DAREAMATCH_BUILD_TOOLS=OFF -DAREAMATCH_INSTALL=OFF > /dev/null
+cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
+
+export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+status=0
+for t in "${targets[@]}"; do
+  mkdir -p "$build/corpus/$t" "$build/findings/$t"
+  echo "== $t: ${seconds} s"
+  if ! "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -timeout=10 \
+        -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$build/findings/$t/" -print_final_stats=1 \
+        2> "$build/$t.log"; then
+    status=1
+    echo "$t: FINDING (see $build/$t.log and $build/findings/$t/)"
+    grep -E "ERROR|SUMMARY|Test unit written" "$build/$t.log" | head -5 || true
+  else
+    grep -E "stat::number_of_executed_units|cov:" "$build/$t.log" | tail -2 || true
+  fi
+done
+exit $status
