@@ -5,6 +5,8 @@
 # finds a crash, a sanitizer report, a leak, an input slower than 10 s or one using more than
 # 2 GB. Turn every finding into a regression test: copy it into fuzz/regressions/<target>/,
 # where the test suite replays it (ctest -L fuzz).
+# The random seed is fixed (AREAMATCH_FUZZ_SEED, default 1) so that a CI run can be repeated
+# exactly; set it to 0 for a fresh seed each run when fuzzing for long.
 #   scripts/fuzz.sh [SECONDS] [TARGET...]      targets: fuzz_image fuzz_yaml fuzz_segment fuzz_match
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -35,7 +37,7 @@ status=0
 for t in "${targets[@]}"; do
   mkdir -p "$build/corpus/$t" "$build/findings/$t"
   echo "== $t: ${seconds} s"
-  if ! "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -timeout=10 \
+  if ! "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -seed="${AREAMATCH_FUZZ_SEED:-1}" -timeout=10 \
         -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$build/findings/$t/" -print_final_stats=1 \
         2> "$build/$t.log"; then
     status=1
