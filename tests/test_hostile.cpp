@@ -12,6 +12,8 @@
 #include <limits>
 #include <string>
 
+#include <sys/resource.h>
+
 using namespace areamatch;
 
 namespace {
@@ -106,4 +108,22 @@ TEST_CASE("a map against one 100 times its area: an answer or a clear refusal, i
     CHECK((r.ok || !r.reason.empty()));
     if (r.ok) CHECK(std::isfinite(r.score));
   }
+}
+
+TEST_CASE("memory stays bounded: segmenting a 4040 x 4040-cell map peaks under 1 GB") {
+  // docs/reliability.md: ~23 bytes per cell. Skipped in the sanitizer run, whose shadow memory
+  // and unoptimised code make the number meaningless there.
+  if (areamatch_test::quick_tests()) return;
+  BuildingParams params;
+  params.width_m = 200;
+  params.height_m = 200;
+  const auto building = generate_building(params, 1);
+  REQUIRE(static_cast<long long>(building.layout.width()) * building.layout.height() >= 16'000'000);
+  const AreaGraph graph = VoronoiSegmenter{}.segment(building.layout);
+  CHECK(graph.areas.size() > 1000);
+  rusage usage{};
+  REQUIRE(::getrusage(RUSAGE_SELF, &usage) == 0);
+  const double peak_mb = static_cast<double>(usage.ru_maxrss) / 1024.0;  // ru_maxrss is in KiB on Linux
+  MESSAGE("peak RSS " << peak_mb << " MB for " << building.layout.width() << " x " << building.layout.height() << " cells");
+  CHECK(peak_mb < 1024.0);
 }
