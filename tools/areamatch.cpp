@@ -309,7 +309,7 @@ const char* kMatchHelp =
     "  --allow-reflection      also try the mirror image of SOURCE\n"
     "  --paper                 the paper's matching as written (k = 3, largest angular cluster)\n"
     "  --k N                   mutual nearest neighbours per area (default 10; paper 3)\n"
-    "  --min-score S           reject when the best whole-map IoU is below S (default 0.25)\n"
+    "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
     "  --json                  print exactly one JSON object on stdout\n"
     "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
     "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n";

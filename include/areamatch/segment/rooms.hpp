@@ -137,6 +137,16 @@ std::vector<int> components(const SampleGraph& g, Member&& member, int& count) {
 
 }  // namespace detail
 
+namespace detail {
+
+/// The clearance (metres) a skeleton point needs to lie in a room rather than in a doorway:
+/// half the door width plus half a grid cell, because an opening of exactly W drawn on the grid
+/// measures up to one cell more (quantisation and wall simplification). `detect_rooms` and the
+/// skeleton's spur pruning (`SkeletonParams::keep_clearance_m`) both use it.
+inline double room_clearance_m(double door_width_m, double resolution) { return 0.5 * door_width_m + 0.5 * resolution; }
+
+}  // namespace detail
+
 /// Finds rooms, narrow corridors and the passages between them on `skeleton`.
 namespace detail {
 inline void split_at_junctions(RoomDetection& out, const Skeleton& skeleton, double resolution, const RoomParams& params);
@@ -148,11 +158,9 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
   out.graph = SampleGraph::from(skeleton);
   const SampleGraph& g = out.graph;
   const std::size_t n = g.samples.size();
-  // An opening of exactly W drawn on the grid measures up to one cell more (quantisation and
-  // wall simplification): half a cell of slack on the clearance keeps such a door a passage.
-  // Rounded to a micro-cell: clearances on the grid are often exact half cells, and which side
-  // of the threshold they fall on must not depend on floating-point noise in W / resolution.
-  const double half_door = std::round((0.5 * params.door_width_m / resolution + 0.5) * 1e6) / 1e6;
+  // In cells, rounded to a micro-cell: clearances on the grid are often exact half cells, and
+  // which side of the threshold they fall on must not depend on floating-point noise.
+  const double half_door = std::round(detail::room_clearance_m(params.door_width_m, resolution) / resolution * 1e6) / 1e6;
   const double margin = params.room_margin_m / resolution;
   const double corridor_length = params.narrow_corridor_length_m / resolution;
   const double search = params.door_search_m / resolution;

@@ -76,7 +76,7 @@ struct SkeletonParams {
   /// (wall niches, corner spurs), repeatedly until none is left.
   double spur_length_m = 1.0;
   /// A dead end whose clearance reaches this is a room, never a spur. `VoronoiSegmenter` sets it
-  /// from the door width (W/2 plus half a cell, the threshold `detect_rooms` uses).
+  /// from the door width (`detail::room_clearance_m`, the threshold `detect_rooms` uses).
   double keep_clearance_m = 0.625;
 
   void validate() const {

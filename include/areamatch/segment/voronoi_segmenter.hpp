@@ -85,7 +85,7 @@ struct VoronoiSegmenter {
     params.areas.validate();
     // Parameters that must agree between stages are derived from one place.
     SkeletonParams skeleton_params = params.skeleton;
-    skeleton_params.keep_clearance_m = 0.5 * params.rooms.door_width_m + 0.5 * grid.resolution();  // as detect_rooms
+    skeleton_params.keep_clearance_m = detail::room_clearance_m(params.rooms.door_width_m, grid.resolution());
     AreaParams area_params = params.areas;
     area_params.min_clearance_m = params.skeleton.min_clearance_m;
 
