@@ -209,6 +209,23 @@ TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth
   CHECK(plain.out.find("no ground truth") != std::string::npos);
 }
 
+TEST_CASE("eval --cross-buildings: the maps of different generated buildings are rejected") {
+  const std::string dir = areamatch_test::temp_dir() + "/eval_cross";
+  REQUIRE(run("generate " + dir + " --count 2 --seed 40 --width 18 --height 14").status == 0);
+  const std::string out = areamatch_test::temp_dir() + "/eval_cross_out";
+  const Run eval = run("eval " + dir + "/pairs.json --cross-buildings --out " + out, false);
+  INFO(eval.out);
+  REQUIRE(eval.status == 0);
+  // 2 buildings of 2 maps each: 2 true pairs and 4 pairs of different buildings.
+  CHECK(eval.out.find("pairs of one building accepted: 2 / 2") != std::string::npos);
+  CHECK(eval.out.find("pairs of different buildings rejected: 4 / 4") != std::string::npos);
+  CHECK(eval.out.find("pair_40/robot x pair_41/layout (different)") != std::string::npos);
+  const std::string csv = read_text(out + "/results.csv");
+  CHECK(csv.find(",different_buildings,") != std::string::npos);
+  CHECK(csv.find(",agreement,") != std::string::npos);
+  CHECK(read_text(out + "/results.json").find("\"different_rejected\": 4") != std::string::npos);
+}
+
 TEST_CASE("eval: bad manifests exit 2 naming the pair and field") {
   const std::string dir = areamatch_test::temp_dir() + "/eval_bad";
   REQUIRE(run("generate " + dir + " --seed 2 --width 12 --height 10").status == 0);
@@ -239,6 +256,8 @@ TEST_CASE("eval: bad manifests exit 2 naming the pair and field") {
       {"empty.json", "{\"pairs\": []}", "\"pairs\" is empty"},
       {"bad_resolution.json", R"({"pairs": [{"name": "a", "source": "robot.yaml", "destination": "layout.yaml", "source_resolution": -1}]})",
        "pair 'a': source_resolution must be positive"},
+      {"different_type.json", R"({"pairs": [{"name": "a", "source": "robot.yaml", "destination": "layout.yaml", "different_buildings": 3}]})",
+       "pair 'a': different_buildings must be true or false"},
   };
   for (const auto& c : cases) {
     const Run r = eval_of(c.file, c.text);

@@ -127,10 +127,48 @@ TEST_CASE("maps of different buildings do not crash and score lower than the tru
   other_params.width_m = 22.0;
   other_params.height_m = 26.0;
   const auto other = generate_building(other_params, 12);
-  const MatchResult wrong = Matcher<>{}.match(one.layout, other.layout);
-  const MatchResult right = Matcher<>{}.match(one.layout, one.layout);
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  const MatchResult wrong = matcher.match(one.layout, other.layout);
+  const MatchResult right = matcher.match(one.layout, one.layout);
   CHECK(right.ok);
   CHECK(wrong.score < right.score);
+  // ... and they are rejected, with the reason and the evidence.
+  CHECK_FALSE(wrong.ok);
+  CHECK(wrong.reason.find("same building") != std::string::npos);
+  CHECK(wrong.evidence.agreement < matcher.params.min_agreement);
+  CHECK(right.evidence.agreement > 0.95);
+  CHECK(right.evidence.reverse_wall_agreement > 0.95);
+  CHECK(right.evidence.free_iou > 0.95);
+}
+
+TEST_CASE("different synthetic buildings are rejected, their true pairs accepted") {
+  // Robot maps (rotated, mirrored, noisy) of 12 buildings, each against its own layout and the
+  // next building's layout.
+  const int buildings = areamatch_test::quick_tests() ? 3 : 12;
+  int accepted = 0, rejected = 0;
+  std::vector<SyntheticBuilding> layouts;
+  std::vector<RobotMap> robots;
+  for (int i = 0; i < buildings; ++i) {
+    layouts.push_back(generate_building({}, 300 + static_cast<std::uint64_t>(i)));
+    RobotMapParams rp;
+    rp.rotation_rad = 0.7 * i;
+    rp.mirror = i % 2 == 1;
+    robots.push_back(make_robot_map(layouts.back(), rp, 400 + static_cast<std::uint64_t>(i)));
+  }
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  for (int i = 0; i < buildings; ++i) {
+    const MatchResult same = matcher.match(robots[i].grid, layouts[i].layout);
+    const MatchResult other = matcher.match(robots[i].grid, layouts[(i + 1) % buildings].layout);
+    MESSAGE("building " << i << ": same agreement " << same.evidence.agreement << ", other "
+                        << other.evidence.agreement);
+    accepted += same.ok;
+    rejected += !other.ok;
+    if (!other.ok) CHECK(other.reason.find("min_agreement") != std::string::npos);
+  }
+  CHECK(accepted == buildings);
+  CHECK(rejected == buildings);
 }
 
 TEST_CASE("bad parameters are refused with a message") {

@@ -310,6 +310,8 @@ const char* kMatchHelp =
     "  --paper                 the paper's matching as written (k = 3, largest angular cluster)\n"
     "  --k N                   mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
+    "  --min-agreement A       reject when the maps agree less than A under the best transform: not the\n"
+    "                          same building (default 0.835; 0 always answers; see docs/evaluation.md)\n"
     "  --json                  print exactly one JSON object on stdout\n"
     "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
     "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n";
@@ -317,7 +319,7 @@ const char* kMatchHelp =
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"allow-reflection", "paper", "json", "help"},
                   {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
-                   "min-score", "png", "svg"});
+                   "min-score", "min-agreement", "png", "svg"});
   if (args.flag("help")) {
     std::cout << kMatchHelp;
     return 0;
@@ -335,6 +337,7 @@ int run_match(const std::vector<std::string>& tokens) {
   options.dest_door_width_m = door ? door : args.number("dest-door-width", true);
   if (const auto k = args.integer("k", 1, 1000)) options.k = static_cast<std::size_t>(*k);
   options.min_score = args.number("min-score", false, true);
+  options.min_agreement = args.number("min-agreement", false, true);
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
 
@@ -385,9 +388,13 @@ const char* kEvalHelp =
     "  --paper            the paper's matching as written\n"
     "  --k N              mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
+    "  --min-agreement A  reject when the maps agree less than A under the best transform (default 0.835)\n"
+    "  --cross-buildings  also run every two maps of different buildings (maps joined by a pair are one\n"
+    "                     building): these must be rejected; the summary gives both acceptance rates\n"
     "  --picture-scale F  shrink pictures by this integer factor (default: to at most 2000 px wide)\n"
     "Per pair, the manifest may give door_width_m, source_resolution, destination_resolution,\n"
-    "allow_reflection and ambiguous (reported, and counted apart in the summary).\n";
+    "allow_reflection, ambiguous (reported, and counted apart in the summary) and different_buildings\n"
+    "(true: the maps must not match; correct when rejected).\n";
 
 std::vector<std::string> split_names(const std::string& list) {
   std::vector<std::string> names;
@@ -411,7 +418,8 @@ std::string picture_name(std::size_t index, const std::string& pair_name) {
 }
 
 int run_eval(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"no-reflection", "paper", "help"}, {"out", "repeat", "only", "k", "min-score", "picture-scale"});
+  const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "help"},
+                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "picture-scale"});
   if (args.flag("help")) {
     std::cout << kEvalHelp;
     return 0;
@@ -423,6 +431,7 @@ int run_eval(const std::vector<std::string>& tokens) {
   options.matching.allow_reflection = !args.flag("no-reflection");
   if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
   options.matching.min_score = args.number("min-score", false, true);
+  options.matching.min_agreement = args.number("min-agreement", false, true);
   const auto picture_scale = args.integer("picture-scale", 1, 100);
   const auto out = args.text("out");
 
@@ -437,6 +446,10 @@ int run_eval(const std::vector<std::string>& tokens) {
     manifest.pairs.erase(std::remove_if(manifest.pairs.begin(), manifest.pairs.end(),
                                         [&](const auto& p) { return std::find(names.begin(), names.end(), p.name) == names.end(); }),
                          manifest.pairs.end());
+  }
+  if (args.flag("cross-buildings")) {
+    const auto cross = areamatch::cross_building_pairs(manifest);
+    manifest.pairs.insert(manifest.pairs.end(), cross.begin(), cross.end());
   }
   areamatch::check_manifest_files(manifest);
   if (out) {
@@ -453,7 +466,10 @@ int run_eval(const std::vector<std::string>& tokens) {
     rows.push_back(areamatch::evaluate_pair(pair, manifest.correct_if, options, out ? &run : nullptr));
     const auto& row = rows.back();
     std::cerr << "[" << i + 1 << "/" << manifest.pairs.size() << "] " << pair.name << ": "
-              << (!row.failure.empty() ? "error" : row.error ? (row.correct ? "correct" : "WRONG") : (row.result.ok ? "matched" : "no match"))
+              << (!row.failure.empty()               ? "error"
+                  : row.pair.different_buildings ? (row.correct ? "rejected (different buildings)" : "ACCEPTED (different buildings)")
+                  : row.error                    ? (row.correct ? "correct" : "WRONG")
+                                                 : (row.result.ok ? "matched" : "no match"))
               << ", " << format_fixed(1000.0 * row.timings.total_s, 1) << " ms\n";
     pictures.emplace_back();
     if (out && row.failure.empty()) {

@@ -31,6 +31,7 @@
 #include "grid.hpp"
 #include "match/clusterer.hpp"
 #include "match/costs.hpp"
+#include "match/evidence.hpp"
 #include "match/features.hpp"
 #include "match/hypotheses.hpp"
 #include "match/raster.hpp"
@@ -84,6 +85,8 @@ struct MatcherParams {
   /// the other slide along a corridor; edges pin room dividers.
   double wall_score_weight = 1.0;
   double wall_inlier_distance_m = 0.3;
+  /// Passages of the two maps this close under the result count as the same (evidence only).
+  double passage_distance_m = 1.0;
 
   // Decision.
   /// Transforms closer than these (rotation, and displacement of the source's free-space
@@ -92,6 +95,14 @@ struct MatcherParams {
   double different_translation_m = 1.0;
   /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected (ok = false).
   double min_score = 0.25;
+  /// Below this `MatchEvidence::agreement` the result is rejected as "not the same building".
+  /// Calibrated on the real pairs of shared/pairs.json, all 596 pairs of maps of different
+  /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): true pairs scored
+  /// 0.841 and more, pairs of different buildings at most 0.828.
+  double min_agreement = 0.835;
+  /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the reverse
+  /// wall agreement). A map confirmed on little of the other's free space is less certain.
+  double agreement_iou_weight = 0.2;
   /// Below this margin to a different or mirrored rival the result is rejected (ok = false).
   double min_confidence = 0.0;
   /// Below this margin the result is flagged `ambiguous` (still ok): on real maps correct answers
@@ -118,6 +129,7 @@ struct MatcherParams {
     p.selection = Selection::largest_cluster;
     p.refine = false;
     p.min_score = 0.0;          // the paper has no rejection rule:
+    p.min_agreement = 0.0;
     p.min_confidence = -1.0;    // it always answers
     return p;
   }
@@ -135,6 +147,10 @@ struct MatcherParams {
     detail::require_positive(different_rotation_rad, "MatcherParams::different_rotation_rad");
     detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");
     detail::require_non_negative(min_score, "MatcherParams::min_score");
+    detail::require_non_negative(min_agreement, "MatcherParams::min_agreement");
+    if (!(agreement_iou_weight >= 0.0 && agreement_iou_weight <= 1.0)) {
+      throw parameter_error("MatcherParams::agreement_iou_weight must be in [0, 1]");
+    }
     if (!std::isfinite(min_confidence)) throw parameter_error("MatcherParams::min_confidence must be finite");
     detail::require_non_negative(min_matched_overlap, "MatcherParams::min_matched_overlap");
     detail::require_non_negative(ambiguity_margin, "MatcherParams::ambiguity_margin");
@@ -151,6 +167,12 @@ inline double seconds_since(std::chrono::steady_clock::time_point start) {
 struct ScoredTransform {
   Similarity2 T;
   double score = 0.0;
+};
+
+/// Both maps' free-space edges: sparse points to move (ICP, scores) and dense lookups to land on.
+struct MapEdges {
+  std::vector<Eigen::Vector2d> source_points, dest_points;
+  BoundaryLookup source_lookup, dest_lookup;
 };
 
 }  // namespace detail
@@ -295,11 +317,12 @@ class Matcher {
     }
     const AreaRaster& source_fine = source_fine_own ? *source_fine_own : source_raster;
     const AreaRaster& dest_fine = dest_fine_own ? *dest_fine_own : dest_raster;
+    const detail::MapEdges edges = map_edges(source_map, dest_map);
     std::vector<detail::ScoredTransform> finalists;  // best first
     if (params.selection == Selection::largest_cluster) {
       finalists = select_largest_cluster(inputs, pairs, hypotheses, clusters, result);
     } else {
-      finalists = select_whole_map(source_map, dest_map, source_raster, dest_raster, source_fine, dest_fine,
+      finalists = select_whole_map(source_map, dest_map, edges, source_raster, dest_raster, source_fine, dest_fine,
                                    hypotheses, clusters, result);
     }
     result.timings.selection_s = detail::seconds_since(stage);
@@ -311,10 +334,20 @@ class Matcher {
     result.score = best.score;
     compute_margins(source_fine, dest_fine, finalists, result);
     result.matched_areas = matched_areas(source, dest, source_fine, dest_fine, best.T);
+    result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges.source_points, edges.source_lookup,
+                                       edges.dest_points, edges.dest_lookup, best.T, params.wall_inlier_distance_m,
+                                       params.passage_distance_m, params.agreement_iou_weight);
 
     if (params.selection == Selection::whole_map && result.score < params.min_score) {
       return finish("best whole-map score " + detail::format_fixed(result.score, 3) + " is below min_score " +
                     detail::format_double(params.min_score) + ": the maps do not match");
+    }
+    if (result.evidence.agreement < params.min_agreement) {
+      return finish("the maps agree too little under the best transform to be the same building: agreement " +
+                    detail::format_fixed(result.evidence.agreement, 3) + " < min_agreement " +
+                    detail::format_double(params.min_agreement) + " (the destination's walls near the source's " +
+                    "free space explained: " + detail::format_fixed(result.evidence.reverse_wall_agreement, 3) +
+                    ", free-space IoU " + detail::format_fixed(result.evidence.free_iou, 3) + ")");
     }
     result.ambiguous = result.confidence < params.ambiguity_margin;
     if (result.confidence < params.min_confidence) {
@@ -373,7 +406,7 @@ class Matcher {
   /// coarse raster; the best few refined by ICP and scored on the fine raster. The answer is the
   /// best of those, whatever cluster it came from.
   std::vector<detail::ScoredTransform> select_whole_map(const MapView& source, const MapView& dest,
-                                                        const AreaRaster& source_raster, const AreaRaster& dest_raster,
+                                                        const detail::MapEdges& edges, const AreaRaster& source_raster, const AreaRaster& dest_raster,
                                                         const AreaRaster& source_fine, const AreaRaster& dest_fine,
                                                         const std::vector<Hypothesis>& hypotheses,
                                                         const std::vector<Cluster>& clusters,
@@ -413,22 +446,18 @@ class Matcher {
       if (c.T.reflected != candidates.front().T.reflected) { add_finalist(c); break; }
     }
 
-    stage_refine(source, dest, source_fine, dest_fine, finalists, result);
+    stage_refine(source, dest, edges, source_fine, dest_fine, finalists, result);
     std::stable_sort(finalists.begin(), finalists.end(), by_score);
     return finalists;
   }
 
   /// Refines the finalists by ICP and scores them: a blend of the fine free-space IoU and the
   /// share of the source's free-space edge that lies on the destination's.
-  void stage_refine(const MapView& source, const MapView& dest, const AreaRaster& source_fine,
-                    const AreaRaster& dest_fine, std::vector<detail::ScoredTransform>& finalists,
-                    MatchResult& result) const {
-    const std::vector<Eigen::Vector2d> edge = detail::free_boundary_points(
-        *source.grid, *source.graph, params.refinement.point_spacing_m,
-        static_cast<std::size_t>(params.refinement.max_points));
-    const BoundaryLookup dest_edge(
-        detail::free_boundary_points(*dest.grid, *dest.graph, 0.5 * params.refinement.lookup_cell_m),
-        params.refinement.lookup_cell_m, params.refinement.gates_m.front());
+  void stage_refine(const MapView& source, const MapView& dest, const detail::MapEdges& edges,
+                    const AreaRaster& source_fine, const AreaRaster& dest_fine,
+                    std::vector<detail::ScoredTransform>& finalists, MatchResult& result) const {
+    const std::vector<Eigen::Vector2d>& edge = edges.source_points;
+    const BoundaryLookup& dest_edge = edges.dest_lookup;
     if (params.refine) {
       const std::vector<Eigen::Vector2d>* points = &edge;
       const BoundaryLookup* lookup = &dest_edge;
@@ -450,6 +479,22 @@ class Matcher {
       const double walls = boundary_inlier_fraction(edge, dest_edge, f.T, params.wall_inlier_distance_m);
       f.score = (1.0 - params.wall_score_weight) * iou + params.wall_score_weight * walls;
     }
+  }
+
+  /// The free-space edges of both maps, each as sparse points (what moves) and a dense lookup
+  /// (what is landed on), so that scores and evidence can look both ways.
+  detail::MapEdges map_edges(const MapView& source, const MapView& dest) const {
+    const RefineParams& r = params.refinement;
+    const auto max_points = static_cast<std::size_t>(r.max_points);
+    const double margin = std::max(r.gates_m.front(), params.wall_inlier_distance_m);
+    detail::MapEdges e;
+    e.source_points = detail::free_boundary_points(*source.grid, *source.graph, r.point_spacing_m, max_points);
+    e.dest_points = detail::free_boundary_points(*dest.grid, *dest.graph, r.point_spacing_m, max_points);
+    e.source_lookup = BoundaryLookup(detail::free_boundary_points(*source.grid, *source.graph, 0.5 * r.lookup_cell_m),
+                                     r.lookup_cell_m, margin);
+    e.dest_lookup = BoundaryLookup(detail::free_boundary_points(*dest.grid, *dest.graph, 0.5 * r.lookup_cell_m),
+                                   r.lookup_cell_m, margin);
+    return e;
   }
 
   /// Whether two transforms are clearly different answers: another side of the mirror, a

@@ -9,6 +9,7 @@
 #include "json.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <string>
 #include <vector>
@@ -28,7 +29,8 @@ inline const std::vector<std::string>& eval_columns() {
 }
 
 inline std::vector<std::string> eval_cells(const PairEvaluation& r) {
-  const std::string name = r.pair.name + (r.pair.ambiguous ? " (ambiguous)" : "");
+  const std::string name = r.pair.name + (r.pair.ambiguous ? " (ambiguous)" : "") +
+                           (r.pair.different_buildings ? " (different)" : "");
   if (!r.failure.empty()) return {name, "-", "-", "-", "-", "-", "error", "-", "-", "-", "-", "-"};
   const MatchTimings& t = r.timings;
   const Similarity2& T = r.result.T_dest_source;
@@ -43,7 +45,7 @@ inline std::vector<std::string> eval_cells(const PairEvaluation& r) {
           format_fixed(T.rotation * 180.0 / pi, 2) + (T.reflected ? " mirrored" : ""),
           r.error ? format_fixed(r.error->rotation_error_deg, 2) : "-",
           r.error ? format_fixed(r.error->mean_displacement_m, 3) : "-",
-          r.error ? (r.correct ? "yes" : "NO") : "-"};
+          r.error || r.pair.different_buildings ? (r.correct ? "yes" : "NO") : "-"};
 }
 
 inline std::vector<std::string> eval_summary_lines(const EvalSummary& s) {
@@ -58,6 +60,13 @@ inline std::vector<std::string> eval_summary_lines(const EvalSummary& s) {
   }
   lines.push_back("matched (ok): " + std::to_string(s.matched) + " / " + std::to_string(s.pairs - s.failed) +
                   (s.failed ? "; " + std::to_string(s.failed) + " pair(s) could not run" : ""));
+  if (s.different_buildings > 0) {
+    auto percent = [](std::size_t a, std::size_t b) { return b ? " (" + format_fixed(100.0 * a / b, 1) + " %)" : ""; };
+    lines.push_back("pairs of one building accepted: " + std::to_string(s.same_accepted) + " / " +
+                    std::to_string(s.same_building) + percent(s.same_accepted, s.same_building) +
+                    "; pairs of different buildings rejected: " + std::to_string(s.different_rejected) + " / " +
+                    std::to_string(s.different_buildings) + percent(s.different_rejected, s.different_buildings));
+  }
   lines.push_back("time per pair: median " + milliseconds(s.median_total_s) + " ms, mean " + milliseconds(s.mean_total_s) +
                   " ms; matching median " + milliseconds(s.median_match_s) + " ms, mean " + milliseconds(s.mean_match_s) +
                   " ms; segmentation median " + milliseconds(s.median_segment_s) + " ms per map");
@@ -113,15 +122,16 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
   using detail::csv_field;
   using detail::format_double;
   std::string out =
-      "name,kind,ambiguous,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
-      "rotation_deg,translation_x_m,translation_y_m,reflected,score,confidence,rotation_error_deg,displacement_m,correct,"
+      "name,kind,ambiguous,different_buildings,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
+      "rotation_deg,translation_x_m,translation_y_m,reflected,score,confidence,agreement,wall_agreement,reverse_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,rotation_error_deg,displacement_m,correct,"
       "repeatable,runs,failure\n";
   for (const auto& r : rows) {
     const bool ran = r.failure.empty();
     const MatchTimings& t = r.timings;
     const Similarity2& T = r.result.T_dest_source;
     auto number = [&](double v) { return ran ? format_double(v) : std::string(); };
-    out += csv_field(r.pair.name) + "," + csv_field(r.pair.kind) + "," + (r.pair.ambiguous ? "true" : "false") + ",";
+    out += csv_field(r.pair.name) + "," + csv_field(r.pair.kind) + "," + (r.pair.ambiguous ? "true" : "false") + "," +
+           (r.pair.different_buildings ? "true" : "false") + ",";
     out += ran ? std::to_string(r.source_areas) + "," + std::to_string(r.dest_areas) + "," : std::string(",,");
     out += number(1000.0 * t.segment_source_s) + "," + number(1000.0 * t.segment_dest_s) + "," +
            number(1000.0 * t.match_s) + "," + number(1000.0 * t.total_s) + ",";
@@ -129,9 +139,14 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
     out += number(T.rotation * 180.0 / pi) + "," + number(T.translation.x()) + "," + number(T.translation.y()) + "," +
            (ran ? std::string(T.reflected ? "true" : "false") : std::string()) + ",";
     out += number(r.result.score) + "," + number(r.result.confidence) + ",";
+    const MatchEvidence& e = r.result.evidence;
+    for (double v : {e.agreement, e.wall_agreement, e.reverse_wall_agreement, e.free_iou, e.source_on_dest,
+                     e.dest_on_source, e.passage_agreement, e.room_agreement}) {
+      out += (std::isfinite(v) ? number(v) : std::string()) + ",";
+    }
     out += r.error ? format_double(r.error->rotation_error_deg) + "," + format_double(r.error->mean_displacement_m) + "," +
                          (r.correct ? "true" : "false") + ","
-                   : std::string(",,,");
+                   : std::string(",,") + (r.pair.different_buildings && ran ? (r.correct ? "true" : "false") : "") + ",";
     out += std::string(r.repeatable ? "true" : "false") + "," + std::to_string(r.runs) + "," + csv_field(r.failure) + "\n";
   }
   return out;
@@ -150,6 +165,10 @@ inline std::string eval_json(const Manifest& manifest, const std::vector<PairEva
          ", \"correct\": " + std::to_string(s.correct) + ", \"non_ambiguous\": " + std::to_string(s.non_ambiguous) +
          ", \"correct_non_ambiguous\": " + std::to_string(s.correct_non_ambiguous) +
          ", \"not_repeatable\": " + std::to_string(s.not_repeatable) +
+         ", \"same_building\": " + std::to_string(s.same_building) +
+         ", \"same_accepted\": " + std::to_string(s.same_accepted) +
+         ", \"different_buildings\": " + std::to_string(s.different_buildings) +
+         ", \"different_rejected\": " + std::to_string(s.different_rejected) +
          ", \"median_total_s\": " + json_number(s.median_total_s) + ", \"mean_total_s\": " + json_number(s.mean_total_s) +
          ", \"median_match_s\": " + json_number(s.median_match_s) + ", \"mean_match_s\": " + json_number(s.mean_match_s) +
          ", \"median_segment_s\": " + json_number(s.median_segment_s) +
@@ -159,6 +178,7 @@ inline std::string eval_json(const Manifest& manifest, const std::vector<PairEva
     const auto& r = rows[i];
     out += std::string(i ? ",\n  " : "\n  ") + "{\"name\": " + json_quote(r.pair.name) + ", \"kind\": " +
            json_quote(r.pair.kind) + ", \"ambiguous\": " + (r.pair.ambiguous ? "true" : "false") +
+           ", \"different_buildings\": " + (r.pair.different_buildings ? "true" : "false") +
            ", \"source\": " + json_quote(r.pair.source) + ", \"destination\": " + json_quote(r.pair.destination);
     if (!r.failure.empty()) {
       out += ", \"failure\": " + json_quote(r.failure) + "}";
@@ -166,6 +186,7 @@ inline std::string eval_json(const Manifest& manifest, const std::vector<PairEva
     }
     out += ", \"source_areas\": " + std::to_string(r.source_areas) + ", \"dest_areas\": " + std::to_string(r.dest_areas) +
            ", \"runs\": " + std::to_string(r.runs) + ", \"repeatable\": " + (r.repeatable ? "true" : "false");
+    if (r.pair.different_buildings) out += std::string(", \"correct\": ") + (r.correct ? "true" : "false");
     if (r.error) {
       out += ", \"rotation_error_deg\": " + json_number(r.error->rotation_error_deg) +
              ", \"displacement_m\": " + json_number(r.error->mean_displacement_m) +

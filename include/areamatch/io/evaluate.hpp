@@ -45,7 +45,8 @@ struct PairEvaluation {
   std::size_t dest_areas = 0;
   MatchTimings timings;            ///< each field the median over the repeats
   std::optional<MatchError> error; ///< with ground truth only
-  bool correct = false;            ///< ok and within the manifest's `correct_if`
+  /// ok and within the manifest's `correct_if`; for a pair of different buildings: rejected
+  bool correct = false;
   bool repeatable = true;          ///< every repeat gave a bit-identical transform and score
   int runs = 0;
 };
@@ -60,6 +61,10 @@ struct EvalSummary {
   std::size_t non_ambiguous = 0;   ///< with ground truth and not marked ambiguous
   std::size_t correct_non_ambiguous = 0;
   std::size_t not_repeatable = 0;
+  std::size_t same_building = 0;        ///< pairs not marked different_buildings (that ran)
+  std::size_t same_accepted = 0;        ///< ... and ok
+  std::size_t different_buildings = 0;  ///< pairs that must not match (that ran)
+  std::size_t different_rejected = 0;   ///< ... and not ok
   double median_total_s = 0.0, mean_total_s = 0.0;
   double median_match_s = 0.0, mean_match_s = 0.0;
   double median_segment_s = 0.0;   ///< per map
@@ -141,6 +146,7 @@ inline PairEvaluation evaluate_pair(const ManifestPair& pair, const CorrectnessT
   row.timings = detail::median_timings(timings);
   row.source_areas = run->source_graph.areas.size();
   row.dest_areas = run->dest_graph.areas.size();
+  if (pair.different_buildings) row.correct = !row.result.ok;
   if (pair.ground_truth) {
     row.error = match_error(row.result.pixel_transform, *pair.ground_truth, free_edge_pixels(run->source),
                             run->dest.resolution());
@@ -165,6 +171,13 @@ inline EvalSummary summarize(const std::vector<PairEvaluation>& rows) {
     match.push_back(r.timings.match_s);
     segment.push_back(r.timings.segment_source_s);
     segment.push_back(r.timings.segment_dest_s);
+    if (r.pair.different_buildings) {
+      ++s.different_buildings;
+      s.different_rejected += !r.result.ok;
+    } else {
+      ++s.same_building;
+      s.same_accepted += r.result.ok;
+    }
     if (!r.error) continue;
     ++s.with_truth;
     s.correct += r.correct;

@@ -98,6 +98,14 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"ambiguous\": " + (r.ambiguous ? "true" : "false");
   out += ", \"margin_different\": " + json_number(r.margin_different) +
          ", \"margin_mirrored\": " + json_number(r.margin_mirrored);
+  const MatchEvidence& e = r.evidence;
+  out += ", \"evidence\": {\"agreement\": " + json_number(e.agreement) +
+         ", \"wall_agreement\": " + json_number(e.wall_agreement) +
+         ", \"reverse_wall_agreement\": " + json_number(e.reverse_wall_agreement) +
+         ", \"free_iou\": " + json_number(e.free_iou) + ", \"source_on_dest\": " + json_number(e.source_on_dest) +
+         ", \"dest_on_source\": " + json_number(e.dest_on_source) +
+         ", \"passage_agreement\": " + json_number(e.passage_agreement) +
+         ", \"room_agreement\": " + json_number(e.room_agreement) + "}";
   out += ", \"matched_areas\": [";
   for (std::size_t i = 0; i < r.matched_areas.size(); ++i) {
     const auto& a = r.matched_areas[i];

@@ -8,13 +8,14 @@
 ///                 "ground_truth": {"pixel_transform": [[a, b, tx], [c, d, ty]], ...},
 ///                 "door_width_m": 1.2, "ambiguous": false, "kind": "...", "note": "...",
 ///                 "source_resolution": 0.05, "destination_resolution": 0.05,
-///                 "allow_reflection": true}]}
+///                 "allow_reflection": true, "different_buildings": false}]}
 ///
 /// Map paths are relative to the manifest's folder unless absolute. Everything but `name`,
 /// `source` and `destination` is optional; `*_resolution` (m/pixel) override what the map's YAML
 /// says (needed for bare images). A manifest gives a ground truth for every pair or for none:
 /// a pair without one among pairs with one is an error, since a silently unscored pair would
-/// skew the correct count.
+/// skew the correct count. Pairs marked `different_buildings` are the exception: maps that must
+/// NOT match (judged correct when rejected), with no ground truth.
 
 #include "../detail/file.hpp"
 #include "../error.hpp"
@@ -44,6 +45,7 @@ struct ManifestPair {
   std::optional<double> destination_resolution;
   std::optional<bool> allow_reflection;          ///< overrides the evaluation's default
   bool ambiguous = false;
+  bool different_buildings = false;              ///< the maps must not match
 };
 
 struct Manifest {
@@ -136,6 +138,9 @@ inline Manifest parse_manifest(const std::string& text, const std::string& path)
     }
     if (p["allow_reflection"]) pair.allow_reflection = detail::manifest_bool(p["allow_reflection"], where + ": allow_reflection");
     if (p["ambiguous"]) pair.ambiguous = detail::manifest_bool(p["ambiguous"], where + ": ambiguous");
+    if (p["different_buildings"]) {
+      pair.different_buildings = detail::manifest_bool(p["different_buildings"], where + ": different_buildings");
+    }
     if (const YAML::Node g = p["ground_truth"]) {
       const YAML::Node t = g.IsMap() ? g["pixel_transform"] : YAML::Node();
       if (!t || !t.IsSequence() || t.size() != 2 || !t[0].IsSequence() || !t[1].IsSequence() || t[0].size() != 3 ||
@@ -145,19 +150,81 @@ inline Manifest parse_manifest(const std::string& text, const std::string& path)
       PixelTransform m2;
       for (int r = 0; r < 2; ++r)
         for (int c = 0; c < 3; ++c) m2(r, c) = detail::manifest_number(t[r][c], where + ": ground_truth.pixel_transform");
+      if (pair.different_buildings) throw format_error(where + ": a pair of different_buildings has no ground_truth");
       pair.ground_truth = m2;
     }
     m.pairs.push_back(std::move(pair));
   }
   if (m.pairs.empty()) throw format_error(path + ": \"pairs\" is empty");
+  const ManifestPair* with_truth = nullptr;
+  const ManifestPair* without_truth = nullptr;
   for (const ManifestPair& pair : m.pairs) {
-    if (pair.ground_truth.has_value() != m.pairs.front().ground_truth.has_value()) {
-      const ManifestPair& without = pair.ground_truth ? m.pairs.front() : pair;
-      throw format_error(path + ": pair '" + without.name + "': ground_truth missing (other pairs have one; give " +
-                         "every pair a ground truth or none)");
-    }
+    if (pair.different_buildings) continue;
+    const ManifestPair*& first = pair.ground_truth ? with_truth : without_truth;
+    if (!first) first = &pair;
+  }
+  if (with_truth && without_truth) {
+    throw format_error(path + ": pair '" + without_truth->name + "': ground_truth missing (other pairs have one; give " +
+                       "every pair a ground truth or none)");
   }
   return m;
+}
+
+/// Pairs of maps that must not match, made from a manifest's pairs: maps joined by a pair (of
+/// the same building) form one building, and every two maps of different buildings make a pair
+/// marked `different_buildings` (each unordered combination once, reflection allowed). A map
+/// keeps the resolution and door width of the first pair that names it.
+inline std::vector<ManifestPair> cross_building_pairs(const Manifest& m) {
+  struct MapEntry {
+    std::string path;
+    std::optional<double> resolution, door_width_m;
+    std::string stem;
+  };
+  std::vector<MapEntry> maps;
+  std::vector<std::size_t> parent;
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  auto add = [&](const std::string& path, const std::optional<double>& resolution, const std::optional<double>& door) {
+    for (std::size_t i = 0; i < maps.size(); ++i) {
+      if (maps[i].path == path) return i;
+    }
+    // The name: the path relative to the manifest's folder, without its extension.
+    const std::string folder = detail::resolve_relative(m.path, "");
+    std::string stem = path.compare(0, folder.size(), folder) == 0 ? path.substr(folder.size()) : path;
+    const auto dot = stem.find_last_of('.');
+    if (dot != std::string::npos && dot > 0 && stem.find('/', dot) == std::string::npos) stem.resize(dot);
+    maps.push_back({path, resolution, door, stem});
+    parent.push_back(parent.size());
+    return maps.size() - 1;
+  };
+  for (const ManifestPair& pair : m.pairs) {
+    if (pair.different_buildings) continue;
+    const std::size_t a = add(pair.source, pair.source_resolution, pair.door_width_m);
+    const std::size_t b = add(pair.destination, pair.destination_resolution, pair.door_width_m);
+    parent[find(a)] = find(b);
+  }
+  std::vector<ManifestPair> out;
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    for (std::size_t j = i + 1; j < maps.size(); ++j) {
+      if (find(i) == find(j)) continue;
+      ManifestPair pair;
+      pair.name = maps[i].stem + " x " + maps[j].stem;
+      pair.kind = "different_buildings";
+      pair.source = maps[i].path;
+      pair.destination = maps[j].path;
+      pair.source_resolution = maps[i].resolution;
+      pair.destination_resolution = maps[j].resolution;
+      if (maps[i].door_width_m && maps[j].door_width_m && *maps[i].door_width_m == *maps[j].door_width_m) {
+        pair.door_width_m = maps[i].door_width_m;
+      }
+      pair.allow_reflection = true;
+      pair.different_buildings = true;
+      out.push_back(std::move(pair));
+    }
+  }
+  return out;
 }
 
 /// Reads a pairs manifest (at most 64 MiB). Throws `io_error` when the file cannot be read and

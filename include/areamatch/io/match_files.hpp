@@ -31,6 +31,7 @@ struct MapPairOptions {
   bool allow_reflection = false;              ///< also try the source's mirror image
   std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
   std::optional<double> min_score;            ///< reject below this whole-map score
+  std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
 };
 
 /// Everything one end-to-end run produced: the maps, their Area Graphs and the match, with
@@ -56,6 +57,7 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, const Map
   matcher.params.allow_reflection = options.allow_reflection;
   if (options.k) matcher.params.k = *options.k;
   if (options.min_score) matcher.params.min_score = *options.min_score;
+  if (options.min_agreement) matcher.params.min_agreement = *options.min_agreement;
   return matcher.match(run.source, run.source_graph, run.dest, run.dest_graph);
 }
 

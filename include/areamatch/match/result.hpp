@@ -4,6 +4,7 @@
 /// scores), not an exception; exceptions are for bad input.
 
 #include "../area_graph.hpp"
+#include "evidence.hpp"
 #include "../transform.hpp"
 
 #include <cmath>
@@ -60,6 +61,8 @@ struct MatchResult {
   double margin_different = std::numeric_limits<double>::quiet_NaN();  ///< NaN when there is no rival
   double margin_mirrored = std::numeric_limits<double>::quiet_NaN();   ///< NaN without allow_reflection
   bool ambiguous = false;          ///< confidence below `MatcherParams::ambiguity_margin`
+  /// How much the maps agree under the result, measured several ways (see match/evidence.hpp).
+  MatchEvidence evidence;
   std::vector<MatchedAreaPair> matched_areas;
   MatchStatistics statistics;
   MatchTimings timings;
