@@ -39,7 +39,7 @@ def main():
     for arg in sys.argv[3:]:
         label, _, folder = arg.partition("=")
         panels.append((label, *load(folder)))
-    bins, W, PH, L, R, T = 50, 760, 170, 60, 20, 40
+    bins, W, PH, L, R, T = 50, 900, 170, 60, 20, 40
     H = T + PH * len(panels) + 40
     X = lambda v: L + v * (W - L - R)
     svg = [f'<svg xmlns="http://www.w3.org/2000/svg" width="{W}" height="{H}" font-family="sans-serif" font-size="12">',

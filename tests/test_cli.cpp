@@ -6,6 +6,8 @@
 
 #include "test_support.hpp"
 
+#include <cstdint>
+#include <filesystem>
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
@@ -154,6 +156,25 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
   CHECK(areamatch::detail::read_file_bytes(dir + "/m.png").size() > 0);
   CHECK(areamatch::detail::read_file_bytes(dir + "/m.svg").size() > 0);
   CHECK(run("match " + pair + " --paper --door-width 1.1").status <= 1);
+
+  // Room labels carried over: the source's size, destination ids + 1 (0 = no counterpart).
+  const Run labels = run("match " + pair + " --allow-reflection --json --labels " + dir + "/carried.png", false);
+  REQUIRE(labels.status == 0);
+  CHECK(labels.out.find("\"local_rotation_deg\"") != std::string::npos);
+  CHECK(labels.out.find("\"iou\"") != std::string::npos);
+  const areamatch::GreyImage robot = areamatch::read_image(dir + "/robot.png");
+  const areamatch::GreyImage carried = areamatch::read_png(dir + "/carried.png");
+  CHECK(carried.width == robot.width);
+  CHECK(carried.height == robot.height);
+  CHECK(carried.max_value == 65535);
+  std::size_t labelled = 0;
+  for (std::uint16_t v : carried.values) labelled += v > 0;
+  CHECK(labelled > carried.values.size() / 10);
+  // No acceptable match: no label file, exit 1.
+  const Run refused = run("match " + pair + " --min-agreement 1.01 --labels " + dir + "/refused.png");
+  CHECK(refused.status == 1);
+  CHECK(refused.out.find("not written") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir + "/refused.png"));
 }
 
 TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match exits 1") {

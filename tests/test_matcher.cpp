@@ -171,6 +171,63 @@ TEST_CASE("different synthetic buildings are rejected, their true pairs accepted
   CHECK(rejected == buildings);
 }
 
+TEST_CASE("room correspondences on bent robot maps: right rooms, local transforms that fit better") {
+  // A smoothly bent robot map (SLAM drift): every corresponding pair must name the right room;
+  // the truth is the layout's room under the area's centroid (the bend moves it < 0.5 m).
+  const int cases = areamatch_test::quick_tests() ? 2 : 8;
+  std::size_t pairs = 0, right = 0, moved = 0;
+  for (int i = 0; i < cases; ++i) {
+    const auto building = generate_building({}, 500 + static_cast<std::uint64_t>(i));
+    RobotMapParams rp;
+    rp.rotation_rad = 0.4 + 0.9 * i;
+    rp.wall_bend_m = 0.4;
+    const auto robot = make_robot_map(building, rp, 600 + static_cast<std::uint64_t>(i));
+    Matcher<> matcher;
+    matcher.segmenter.params.with_door_width(0.9);
+    const AreaGraph source = matcher.segmenter.segment(robot.grid);
+    const AreaGraph dest = matcher.segmenter.segment(building.layout);
+    const MatchResult r = matcher.match(robot.grid, source, building.layout, dest);
+    REQUIRE_MESSAGE(r.ok, r.reason);
+    auto truth_room = [&](const Eigen::Vector2d& world) {
+      const Eigen::Vector2d px = building.layout.pixel_from_world() * world;
+      const int col = static_cast<int>(std::lround(px.x())), row = static_cast<int>(std::lround(px.y()));
+      if (col < 0 || row < 0 || col >= building.layout.width() || row >= building.layout.height()) return -1;
+      return building.labels[static_cast<std::size_t>(row) * static_cast<std::size_t>(building.layout.width()) +
+                             static_cast<std::size_t>(col)];
+    };
+    for (const MatchedAreaPair& p : r.matched_areas) {
+      const int from = truth_room(robot.T_dest_source * source.areas[static_cast<std::size_t>(p.source)].centroid);
+      const int to = truth_room(dest.areas[static_cast<std::size_t>(p.dest)].centroid);
+      if (from < 0 || to < 0) continue;  // a centroid outside every room (an L-shaped corridor)
+      ++pairs;
+      right += from == to;
+      if (!(p.T_dest_source.translation - r.T_dest_source.translation).isZero(1e-12)) {
+        ++moved;
+        CHECK(p.wall_agreement >= 0.0);
+      }
+      CHECK(p.iou > 0.0);
+      CHECK(p.iou <= 1.0);
+      CHECK(p.overlap >= matcher.params.correspondences.min_overlap);
+    }
+  }
+  MESSAGE(right << " of " << pairs << " room pairs right; " << moved << " with their own transform");
+  CHECK(pairs > 0);
+  CHECK(right >= pairs * 95 / 100);
+  CHECK(moved > 0);
+}
+
+TEST_CASE("correspondence labels: destination id + 1 on the source's cells, 0 elsewhere") {
+  AreaGraph g;
+  g.areas.resize(3);
+  g.labels = {-1, 0, 0, 1, 2, 2};
+  std::vector<MatchedAreaPair> pairs(2);
+  pairs[0].source = 0;
+  pairs[0].dest = 5;
+  pairs[1].source = 2;
+  pairs[1].dest = 7;
+  CHECK(correspondence_labels(g, pairs) == std::vector<int>{0, 6, 6, 0, 8, 8});
+}
+
 TEST_CASE("bad parameters are refused with a message") {
   const auto building = generate_building({}, 2);
   Matcher<> matcher;

@@ -314,12 +314,15 @@ const char* kMatchHelp =
     "                          same building (default 0.835; 0 always answers; see docs/evaluation.md)\n"
     "  --json                  print exactly one JSON object on stdout\n"
     "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
-    "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n";
+    "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n"
+    "  --labels OUT.png        16-bit PNG the size of SOURCE: each pixel of a SOURCE area holds the id + 1 of\n"
+    "                          the DEST area it corresponds to (0: none), to carry room labels over;\n"
+    "                          written only when matched. The JSON lists the pairs with their local transforms\n";
 
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"allow-reflection", "paper", "json", "help"},
                   {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
-                   "min-score", "min-agreement", "png", "svg"});
+                   "min-score", "min-agreement", "png", "svg", "labels"});
   if (args.flag("help")) {
     std::cout << kMatchHelp;
     return 0;
@@ -350,6 +353,16 @@ int run_match(const std::vector<std::string>& tokens) {
   if (const auto svg = args.text("svg")) {
     areamatch::write_text_file(*svg, areamatch::overlay_svg(areamatch::render_match_overlay(source, dest, dest_graph, result),
                                                             dest, source, result.T_dest_source));
+  }
+  if (const auto labels = args.text("labels")) {
+    if (result.ok) {
+      areamatch::GreyImage image(source_graph.grid.width, source_graph.grid.height, 65535);
+      const std::vector<int> ids = areamatch::correspondence_labels(source_graph, result.matched_areas);
+      for (std::size_t i = 0; i < ids.size(); ++i) image.values[i] = static_cast<std::uint16_t>(std::min(ids[i], 65535));
+      areamatch::write_png(*labels, image);
+    } else {
+      std::cerr << "areamatch match: " << *labels << " not written: no acceptable match\n";
+    }
   }
   if (args.flag("json")) {
     std::cout << areamatch::match_result_json(result) << "\n";

@@ -30,6 +30,7 @@
 #include "error.hpp"
 #include "grid.hpp"
 #include "match/clusterer.hpp"
+#include "match/correspondence.hpp"
 #include "match/costs.hpp"
 #include "match/evidence.hpp"
 #include "match/features.hpp"
@@ -109,8 +110,8 @@ struct MatcherParams {
   /// have come with margins as small as 0.002 (a SLAM map longer than its layout slides along
   /// the corridor), so rejecting them is the caller's call.
   double ambiguity_margin = 0.02;
-  /// Area pairs overlapping at least this much under the result are reported as matched.
-  double min_matched_overlap = 0.5;
+  /// Room correspondences and per-room transforms (`MatchResult::matched_areas`).
+  CorrespondenceParams correspondences;
   /// Most areas accepted per map; beyond, `match` throws `limit_error`. The feature costs grow
   /// with areas_source × areas_dest: a pair of 1550-area maps takes 3.6 s to match on the CI
   /// machine, so the limit keeps a pair under about 15 s.
@@ -152,7 +153,7 @@ struct MatcherParams {
       throw parameter_error("MatcherParams::agreement_iou_weight must be in [0, 1]");
     }
     if (!std::isfinite(min_confidence)) throw parameter_error("MatcherParams::min_confidence must be finite");
-    detail::require_non_negative(min_matched_overlap, "MatcherParams::min_matched_overlap");
+    correspondences.validate();
     detail::require_non_negative(ambiguity_margin, "MatcherParams::ambiguity_margin");
   }
 };
@@ -333,7 +334,8 @@ class Matcher {
     result.pixel_transform = to_pixel_transform(best.T, source.grid, dest.grid);
     result.score = best.score;
     compute_margins(source_fine, dest_fine, finalists, result);
-    result.matched_areas = matched_areas(source, dest, source_fine, dest_fine, best.T);
+    result.matched_areas = area_correspondences(*source_map.grid, source, dest, source_fine, dest_fine, edges.dest_lookup,
+                                                best.T, params.correspondences);
     result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges.source_points, edges.source_lookup,
                                        edges.dest_points, edges.dest_lookup, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
@@ -535,29 +537,6 @@ class Matcher {
     if (!std::isnan(result.margin_different)) confidence = std::min(confidence, result.margin_different);
     if (!std::isnan(result.margin_mirrored)) confidence = std::min(confidence, result.margin_mirrored);
     result.confidence = confidence;
-  }
-
-  /// Every source area with the destination area most of it lands on, when they overlap enough.
-  std::vector<MatchedAreaPair> matched_areas(const AreaGraph& source, const AreaGraph& dest,
-                                             const AreaRaster& source_fine, const AreaRaster& dest_fine,
-                                             const Similarity2& T) const {
-    std::vector<MatchedAreaPair> out;
-    const Eigen::Affine2d to_cell = dest_fine.cell_from_world * T.affine();
-    std::vector<int> counts(dest.areas.size(), 0);
-    for (std::size_t i = 0; i < source.areas.size(); ++i) {
-      std::fill(counts.begin(), counts.end(), 0);
-      for (int index : source_fine.area_cells[i]) {
-        const int label = dest_fine.label_at_cell(to_cell * source_fine.centres[static_cast<std::size_t>(index)]);
-        if (label >= 0) ++counts[static_cast<std::size_t>(label)];
-      }
-      const auto it = std::max_element(counts.begin(), counts.end());
-      if (it == counts.end() || *it == 0) continue;
-      const int j = static_cast<int>(it - counts.begin());
-      const double denominator = std::min(source.areas[i].size_m2, dest.areas[static_cast<std::size_t>(j)].size_m2);
-      const double overlap = denominator > 0.0 ? std::min(1.0, *it * source_fine.cell_area() / denominator) : 0.0;
-      if (overlap >= params.min_matched_overlap) out.push_back({static_cast<int>(i), j, overlap});
-    }
-    return out;
   }
 };
 

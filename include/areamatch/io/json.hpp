@@ -110,7 +110,10 @@ inline std::string match_result_json(const MatchResult& r) {
   for (std::size_t i = 0; i < r.matched_areas.size(); ++i) {
     const auto& a = r.matched_areas[i];
     out += std::string(i ? ", " : "") + "{\"source\": " + std::to_string(a.source) + ", \"dest\": " +
-           std::to_string(a.dest) + ", \"overlap\": " + json_number(a.overlap) + "}";
+           std::to_string(a.dest) + ", \"overlap\": " + json_number(a.overlap) + ", \"iou\": " + json_number(a.iou) +
+           ", \"local_rotation_deg\": " + json_number(a.T_dest_source.rotation * 180.0 / pi) +
+           ", \"local_translation_m\": [" + json_number(a.T_dest_source.translation.x()) + ", " +
+           json_number(a.T_dest_source.translation.y()) + "], \"wall_agreement\": " + json_number(a.wall_agreement) + "}";
   }
   const MatchStatistics& s = r.statistics;
   out += "], \"statistics\": {\"source_areas\": " + std::to_string(s.source_areas) +

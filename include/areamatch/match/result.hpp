@@ -15,11 +15,19 @@
 
 namespace areamatch {
 
-/// A source area and the destination area it lands on under the result's transform.
+/// A source area, the destination area it corresponds to, and the area's own transform
+/// (see match/correspondence.hpp).
 struct MatchedAreaPair {
   int source = -1;
   int dest = -1;
-  double overlap = 0.0;  ///< area(T(source) ∩ dest) / min(size_source, size_dest)
+  double overlap = 0.0;  ///< area(T(source) ∩ dest) / min(size_source, size_dest), under T_dest_source
+  double iou = 0.0;      ///< area(T(source) ∩ dest) / area(T(source) ∪ dest)
+  /// The area's local transform: the result's, refined on this area's walls alone (equal to the
+  /// result's when that did not lay them better or the area has too few wall points).
+  Similarity2 T_dest_source;
+  /// Share of the area's wall points on the destination's walls under its local transform; NaN
+  /// when the area has too few wall points to judge.
+  double wall_agreement = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// Wall-clock seconds per stage. The segment fields are zero when graphs were passed in.

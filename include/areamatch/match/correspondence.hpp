@@ -1,0 +1,160 @@
+#pragma once
+/// \file match/correspondence.hpp
+/// Room-to-room correspondences with a transform per room. The global transform is one rigid
+/// motion; a SLAM map is bent (drift), so a room far from the map's middle can sit half a metre
+/// off its drawn counterpart. Each source area gets its own transform — trimmed ICP of the
+/// area's walls onto the destination's, started from the global transform, with short gates so
+/// it cannot jump to a neighbouring room — and its counterpart is the destination area most of
+/// it lands on under that transform. This is what transfers room labels from a layout to a robot
+/// map (`areamatch match --labels`).
+
+#include "../area_graph.hpp"
+#include "../error.hpp"
+#include "../grid.hpp"
+#include "../transform.hpp"
+#include "raster.hpp"
+#include "refine.hpp"
+#include "result.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+namespace areamatch {
+
+struct CorrespondenceParams {
+  /// The local ICP: short gates (metres), so that a room moves to its own walls and not to the
+  /// next room's. The global ICP starts at 2 m.
+  RefineParams local{{1.0, 0.6, 0.3}, 6, 0.8, 0.1, 600, 0.1};
+  /// Areas with fewer wall points than this keep the global transform (too little to fit).
+  std::size_t min_wall_points = 30;
+  /// Pairs overlapping less than this (area of the overlap / the smaller area) are not reported.
+  double min_overlap = 0.5;
+  /// Wall points within this distance count as on the other map's wall (to judge local vs global).
+  double wall_inlier_distance_m = 0.3;
+  /// A local transform may differ from the global one by at most this rotation, and move the
+  /// area's centroid by at most this distance: drift bends a map by centimetres to decimetres
+  /// per room; more means ICP slid a small or featureless area somewhere else.
+  double max_rotation_rad = 5.0 * pi / 180.0;
+  double max_shift_m = 1.0;
+
+  void validate() const {
+    local.validate();
+    if (min_wall_points < 3) throw parameter_error("CorrespondenceParams::min_wall_points must be >= 3");
+    detail::require_non_negative(min_overlap, "CorrespondenceParams::min_overlap");
+    detail::require_positive(wall_inlier_distance_m, "CorrespondenceParams::wall_inlier_distance_m");
+    detail::require_non_negative(max_rotation_rad, "CorrespondenceParams::max_rotation_rad");
+    detail::require_non_negative(max_shift_m, "CorrespondenceParams::max_shift_m");
+  }
+};
+
+namespace detail {
+
+/// Per area: the free-space edge points (walls, furniture) of its cells, about `spacing_m` apart.
+/// The cuts at passages are not edges of the free space, so they are not included.
+inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const OccupancyGrid& grid, const AreaGraph& graph,
+                                                                  double spacing_m) {
+  std::vector<std::vector<Eigen::Vector2d>> out(graph.areas.size());
+  const GridInfo& g = graph.grid;
+  const PixelBounds bounds = label_bounds(graph, 0);
+  const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
+  const int bins_x = (g.width + step - 1) / step;
+  std::vector<std::uint8_t> taken(static_cast<std::size_t>(bins_x) * static_cast<std::size_t>((g.height + step - 1) / step), 0);
+  const auto& cells = grid.cells();
+  auto free_at = [&](int x, int y) {
+    return x >= 0 && y >= 0 && x < g.width && y < g.height &&
+           cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x)] ==
+               CellState::free;
+  };
+  const Eigen::Affine2d world = g.world_from_pixel();
+  for (int y = bounds.row0; y < bounds.row1; ++y) {
+    for (int x = bounds.col0; x < bounds.col1; ++x) {
+      const int label = graph.labels[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x)];
+      if (label < 0 || !free_at(x, y)) continue;
+      if (free_at(x - 1, y) && free_at(x + 1, y) && free_at(x, y - 1) && free_at(x, y + 1)) continue;
+      auto& bin = taken[static_cast<std::size_t>(y / step) * static_cast<std::size_t>(bins_x) + static_cast<std::size_t>(x / step)];
+      if (bin) continue;
+      bin = 1;
+      out[static_cast<std::size_t>(label)].push_back(world * Eigen::Vector2d(x, y));
+    }
+  }
+  return out;
+}
+
+}  // namespace detail
+
+/// For every source area: its local transform and the destination area it corresponds to under
+/// it (reported when they overlap by at least `params.min_overlap`), in source-area order.
+/// `dest_walls` looks up the destination's free-space edge; the rasters share one cell size.
+inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& source_grid, const AreaGraph& source,
+                                                         const AreaGraph& dest, const AreaRaster& source_raster,
+                                                         const AreaRaster& dest_raster, const BoundaryLookup& dest_walls,
+                                                         const Similarity2& T_dest_source,
+                                                         const CorrespondenceParams& params) {
+  params.validate();
+  const auto walls = detail::area_wall_points(source_grid, source, params.local.point_spacing_m);
+  const double scale2 = T_dest_source.scale * T_dest_source.scale;
+  std::vector<MatchedAreaPair> out;
+  std::vector<int> counts(dest.areas.size(), 0);
+  for (std::size_t i = 0; i < source.areas.size(); ++i) {
+    // The area's own transform, kept only when it lays the area's walls better.
+    Similarity2 T = T_dest_source;
+    double on_walls = std::numeric_limits<double>::quiet_NaN();
+    if (walls[i].size() >= params.min_wall_points) {
+      on_walls = boundary_inlier_fraction(walls[i], dest_walls, T, params.wall_inlier_distance_m);
+      const Similarity2 local = refine_icp(walls[i], dest_walls, T, params.local);
+      const double local_on_walls = boundary_inlier_fraction(walls[i], dest_walls, local, params.wall_inlier_distance_m);
+      const Eigen::Vector2d centroid = source.areas[i].centroid;
+      const bool close = std::abs(wrap_angle(local.rotation - T.rotation)) <= params.max_rotation_rad &&
+                         (local * centroid - T * centroid).norm() <= params.max_shift_m;
+      if (close && local_on_walls > on_walls) {
+        T = local;
+        on_walls = local_on_walls;
+      }
+    }
+    std::fill(counts.begin(), counts.end(), 0);
+    const Eigen::Affine2d to_cell = dest_raster.cell_from_world * T.affine();
+    for (int index : source_raster.area_cells[i]) {
+      const int label = dest_raster.label_at_cell(to_cell * source_raster.centres[static_cast<std::size_t>(index)]);
+      if (label >= 0) ++counts[static_cast<std::size_t>(label)];
+    }
+    const auto it = std::max_element(counts.begin(), counts.end());  // the lowest id on ties
+    if (it == counts.end() || *it == 0) continue;
+    const std::size_t j = static_cast<std::size_t>(it - counts.begin());
+    const double common_m2 = *it * source_raster.cell_area() * scale2;
+    const double smaller = std::min(source.areas[i].size_m2 * scale2, dest.areas[j].size_m2);
+    const double overlap = smaller > 0.0 ? std::min(1.0, common_m2 / smaller) : 0.0;
+    if (overlap < params.min_overlap) continue;
+    const double a = static_cast<double>(source_raster.area_cells[i].size()) * source_raster.cell_area() * scale2;
+    const double b = static_cast<double>(dest_raster.area_cells[j].size()) * dest_raster.cell_area();
+    MatchedAreaPair pair;
+    pair.source = static_cast<int>(i);
+    pair.dest = static_cast<int>(j);
+    pair.overlap = overlap;
+    pair.iou = a + b - common_m2 > 0.0 ? std::min(1.0, common_m2 / (a + b - common_m2)) : 0.0;
+    pair.T_dest_source = T;
+    pair.wall_agreement = on_walls;
+    out.push_back(pair);
+  }
+  return out;
+}
+
+/// A label image the size of the source map (as `areamatch segment --labels`): each cell of a
+/// source area that has a counterpart holds that destination area's id + 1; every other cell 0.
+inline std::vector<int> correspondence_labels(const AreaGraph& source, const std::vector<MatchedAreaPair>& pairs) {
+  std::vector<int> dest_of(source.areas.size(), -1);
+  for (const auto& p : pairs) dest_of[static_cast<std::size_t>(p.source)] = p.dest;
+  std::vector<int> out(source.labels.size(), 0);
+  for (std::size_t k = 0; k < out.size(); ++k) {
+    const int label = source.labels[k];
+    if (label >= 0 && dest_of[static_cast<std::size_t>(label)] >= 0) out[k] = dest_of[static_cast<std::size_t>(label)] + 1;
+  }
+  return out;
+}
+
+}  // namespace areamatch
