@@ -177,6 +177,24 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
   CHECK_FALSE(std::filesystem::exists(dir + "/refused.png"));
 }
 
+TEST_CASE("match --estimate-scale: a source whose resolution is wrong") {
+  const std::string dir = areamatch_test::temp_dir() + "/scale_pair";
+  REQUIRE(run("generate " + dir + " --seed 9 --width 24 --height 16 --rotation 40").status == 0);
+  const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
+  // The robot map is 0.05 m per pixel; told 0.08, the true scale is 0.625.
+  const Run r = run("match " + pair + " --source-resolution 0.08 --door-width 0.9 --estimate-scale --json", false);
+  INFO(r.out);
+  REQUIRE(r.status == 0);
+  CHECK(r.out.find("\"scale_estimated\": true") != std::string::npos);
+  const auto at = r.out.find("\"scale\": ");
+  REQUIRE(at != std::string::npos);
+  const double scale = std::stod(r.out.substr(at + 9));
+  CHECK(scale == doctest::Approx(0.625).epsilon(0.02));
+  const Run paper = run("match " + pair + " --estimate-scale --paper");
+  CHECK(paper.status == 2);
+  CHECK(paper.out.find("estimate_scale needs refine") != std::string::npos);
+}
+
 TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match exits 1") {
   const std::string dir = areamatch_test::temp_dir() + "/match_bad";
   REQUIRE(run("generate " + dir + " --seed 6 --width 16 --height 12").status == 0);

@@ -228,6 +228,70 @@ TEST_CASE("correspondence labels: destination id + 1 on the source's cells, 0 el
   CHECK(correspondence_labels(g, pairs) == std::vector<int>{0, 6, 6, 0, 8, 8});
 }
 
+TEST_CASE("estimate_scale: robot maps whose resolution is wrong by 0.5x to 2x") {
+  // The robot map is made at 0.05 m but claims another resolution; the true scale (true
+  // resolution / given) must come back within 2 %, with the transform right.
+  const std::vector<double> true_scales = areamatch_test::quick_tests() ? std::vector<double>{0.55, 1.8}
+                                                                        : std::vector<double>{0.5, 0.62, 0.8, 1.13, 1.45, 2.0};
+  int index = 0;
+  for (double truth : true_scales) {
+    const auto building = generate_building({}, 700 + static_cast<std::uint64_t>(index));
+    RobotMapParams rp;
+    rp.rotation_rad = 1.1 * index - 2.0;
+    rp.mirror = index % 2 == 1;
+    RobotMap robot = make_robot_map(building, rp, 800 + static_cast<std::uint64_t>(index));
+    ++index;
+    robot.grid.set_resolution(robot.grid.resolution() / truth);
+    Matcher<> matcher;
+    matcher.params.allow_reflection = true;
+    matcher.params.estimate_scale = true;
+    matcher.segmenter.params.with_door_width(0.9);
+    const MatchResult r = matcher.match(robot.grid, building.layout);
+    INFO("true scale " << truth << ": " << r.reason << " scale " << r.T_dest_source.scale);
+    REQUIRE(r.ok);
+    CHECK(r.scale_estimated);
+    CHECK(std::abs(r.T_dest_source.scale / truth - 1.0) < 0.02);
+    const auto pixel_error = match_error(r.pixel_transform, robot.pixel_transform, free_edge_pixels(robot.grid), 0.05);
+    CHECK(pixel_error.rotation_error_deg < 1.0);
+    CHECK(pixel_error.mean_displacement_m < 0.3);
+    CHECK(pixel_error.scale_error < 0.02);
+  }
+}
+
+TEST_CASE("estimate_scale: refused with graphs or without refinement; no hypothesis gives a clear not-ok") {
+  const auto building = generate_building({}, 3);
+  Matcher<> matcher;
+  matcher.params.estimate_scale = true;
+  const AreaGraph g = matcher.segmenter.segment(building.layout);
+  CHECK_THROWS_WITH_AS(matcher.match(building.layout, g, building.layout, g), doctest::Contains("estimate_scale"),
+                       parameter_error);
+  matcher.params.refine = false;
+  CHECK_THROWS_WITH_AS(matcher.match(building.layout, building.layout), doctest::Contains("needs refine"), parameter_error);
+  matcher.params.refine = true;
+  matcher.params.scale.min_scale = 2.0;
+  matcher.params.scale.max_scale = 1.0;
+  CHECK_THROWS_AS(matcher.match(building.layout, building.layout), parameter_error);
+  // Nothing to match: every candidate scale fails, and the result says so.
+  matcher.params.scale = ScaleParams{};
+  OccupancyGrid walls(40, 40, 0.05, {}, CellState::occupied);
+  const MatchResult none = matcher.match(walls, building.layout);
+  CHECK_FALSE(none.ok);
+  CHECK(none.reason.find("scale could not be estimated") != std::string::npos);
+}
+
+TEST_CASE("scale candidates cover the range evenly in log scale") {
+  const std::vector<double> c = scale_candidates(ScaleParams{});
+  REQUIRE(c.size() == 17);
+  CHECK(c.front() == doctest::Approx(0.5));
+  CHECK(c.back() == doctest::Approx(2.0));
+  CHECK(c[8] == doctest::Approx(1.0));
+  ScaleParams odd;
+  odd.min_scale = 0.8;
+  odd.max_scale = 1.0;
+  odd.candidates_per_doubling = 2;
+  CHECK(scale_candidates(odd) == std::vector<double>{0.8, 1.0});
+}
+
 TEST_CASE("bad parameters are refused with a message") {
   const auto building = generate_building({}, 2);
   Matcher<> matcher;

@@ -307,6 +307,8 @@ const char* kMatchHelp =
     "  --source-door-width M   door width of SOURCE only (with --dest-door-width; not with --door-width)\n"
     "  --dest-door-width M     door width of DEST only\n"
     "  --allow-reflection      also try the mirror image of SOURCE\n"
+    "  --estimate-scale        SOURCE's resolution is unknown (0.5-2x the given one): estimate it; the\n"
+    "                          result's scale is the estimate (about 10x slower)\n"
     "  --paper                 the paper's matching as written (k = 3, largest angular cluster)\n"
     "  --k N                   mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
@@ -320,7 +322,7 @@ const char* kMatchHelp =
     "                          written only when matched. The JSON lists the pairs with their local transforms\n";
 
 int run_match(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"allow-reflection", "paper", "json", "help"},
+  const Args args(tokens, {"allow-reflection", "paper", "json", "estimate-scale", "help"},
                   {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
                    "min-score", "min-agreement", "png", "svg", "labels"});
   if (args.flag("help")) {
@@ -343,6 +345,7 @@ int run_match(const std::vector<std::string>& tokens) {
   options.min_agreement = args.number("min-agreement", false, true);
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
+  options.estimate_scale = args.flag("estimate-scale");
 
   const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
   const auto& [source, dest, source_graph, dest_graph, result] = run;
@@ -370,7 +373,8 @@ int run_match(const std::vector<std::string>& tokens) {
     const auto& T = result.T_dest_source;
     std::cout << (result.ok ? "matched" : "no match") << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2)
               << " deg, translation (" << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3)
-              << ") m" << (T.reflected ? ", reflected" : "") << ", score " << format_fixed(result.score, 3)
+              << ") m" << (result.scale_estimated ? ", scale " + format_fixed(T.scale, 4) : std::string())
+              << (T.reflected ? ", reflected" : "") << ", score " << format_fixed(result.score, 3)
               << ", confidence " << format_fixed(result.confidence, 3) << ", " << result.matched_areas.size()
               << " matched areas (" << result.statistics.source_areas << " / " << result.statistics.dest_areas
               << " areas), " << format_fixed(1000.0 * result.timings.total_s, 1) << " ms (match "
@@ -402,6 +406,9 @@ const char* kEvalHelp =
     "  --k N              mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A  reject when the maps agree less than A under the best transform (default 0.835)\n"
+    "  --estimate-scale   estimate each source's scale (its resolution may be off by 0.5-2x); the summary\n"
+    "                     gives the scale errors against the ground truth\n"
+    "  --source-resolution R  take every source map as R m/pixel (a pair's source_resolution still wins)\n"
     "  --cross-buildings  also run every two maps of different buildings (maps joined by a pair are one\n"
     "                     building): these must be rejected; the summary gives both acceptance rates\n"
     "  --picture-scale F  shrink pictures by this integer factor (default: to at most 2000 px wide)\n"
@@ -431,8 +438,8 @@ std::string picture_name(std::size_t index, const std::string& pair_name) {
 }
 
 int run_eval(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "help"},
-                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "picture-scale"});
+  const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "estimate-scale", "help"},
+                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "picture-scale", "source-resolution"});
   if (args.flag("help")) {
     std::cout << kEvalHelp;
     return 0;
@@ -445,6 +452,8 @@ int run_eval(const std::vector<std::string>& tokens) {
   if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
   options.matching.min_score = args.number("min-score", false, true);
   options.matching.min_agreement = args.number("min-agreement", false, true);
+  options.matching.estimate_scale = args.flag("estimate-scale");
+  options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);
   const auto picture_scale = args.integer("picture-scale", 1, 100);
   const auto out = args.text("out");
 

@@ -24,6 +24,7 @@ struct CorrectnessThresholds {
 struct MatchError {
   double rotation_error_deg = 0.0;   ///< 180 when one transform is mirrored and the other not
   double mean_displacement_m = 0.0;  ///< in destination metres
+  double scale_error = 0.0;          ///< |estimated scale / true scale − 1| of the pixel transforms
   bool correct(const CorrectnessThresholds& t) const {
     return rotation_error_deg <= t.max_rotation_error_deg && mean_displacement_m <= t.max_mean_displacement_m;
   }
@@ -82,6 +83,9 @@ inline MatchError match_error(const PixelTransform& estimate, const PixelTransfo
     sum += (estimate.leftCols<2>() * p + estimate.col(2) - truth.leftCols<2>() * p - truth.col(2)).norm();
   }
   e.mean_displacement_m = source_pixels.empty() ? 0.0 : sum / static_cast<double>(source_pixels.size()) * dest_resolution;
+  const double truth_scale = std::sqrt(std::abs(truth.leftCols<2>().determinant()));
+  const double estimate_scale = std::sqrt(std::abs(estimate.leftCols<2>().determinant()));
+  e.scale_error = truth_scale > 0.0 ? std::abs(estimate_scale / truth_scale - 1.0) : 0.0;
   return e;
 }
 

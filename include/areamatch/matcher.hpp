@@ -38,6 +38,7 @@
 #include "match/raster.hpp"
 #include "match/refine.hpp"
 #include "match/result.hpp"
+#include "match/scale.hpp"
 #include "segment/voronoi_segmenter.hpp"
 #include "segmenter.hpp"
 #include "transform.hpp"
@@ -70,6 +71,11 @@ struct MatcherParams {
   /// Also try the mirror image of the source (image rows run down, map y up: mirrored pairs are
   /// common). Both sides are judged by the same score.
   bool allow_reflection = false;
+  /// Treat the source's resolution as unknown, within [scale.min_scale, scale.max_scale] × the
+  /// given one, and estimate it (match/scale.hpp). Needs the grids (the source is segmented at
+  /// each candidate scale) and `refine` (the ICP fits the scale); about 10× the time of a match.
+  bool estimate_scale = false;
+  ScaleParams scale;
 
   // Whole-map verification.
   double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
@@ -137,6 +143,10 @@ struct MatcherParams {
 
   void validate() const {
     if (k < 1) throw parameter_error("MatcherParams::k must be >= 1");
+    if (estimate_scale) {
+      scale.validate();
+      if (!refine) throw parameter_error("MatcherParams::estimate_scale needs refine (the scale is fitted by the ICP)");
+    }
     hypotheses.validate();
     detail::require_positive(coarse_cell_m, "MatcherParams::coarse_cell_m");
     detail::require_positive(fine_cell_m, "MatcherParams::fine_cell_m");
@@ -207,9 +217,19 @@ class Matcher {
       : segmenter(std::move(s)), features(std::move(f)), weights(std::move(w)), clusterer(std::move(c)),
         params(std::move(p)) {}
 
-  /// Segments both grids with `segmenter` and matches them.
+  /// Segments both grids with `segmenter` and matches them (estimating the source's scale too
+  /// with `params.estimate_scale`).
   MatchResult match(const OccupancyGrid& source, const OccupancyGrid& dest) const {
     const auto start = std::chrono::steady_clock::now();
+    if (params.estimate_scale) {
+      params.validate();
+      const AreaGraph dest_graph = segmenter.segment(dest);
+      const double segment_dest_s = detail::seconds_since(start);
+      MatchResult result = match_estimating_scale(source, dest, dest_graph);
+      result.timings.segment_dest_s = segment_dest_s;
+      result.timings.total_s = detail::seconds_since(start);
+      return result;
+    }
     const AreaGraph source_graph = segmenter.segment(source);
     const double segment_source_s = detail::seconds_since(start);
     const auto dest_start = std::chrono::steady_clock::now();
@@ -223,19 +243,123 @@ class Matcher {
   }
 
   /// Matches two maps already segmented (by anything, e.g. with a door width per map). Each graph
-  /// must come from its grid.
+  /// must come from its grid. Not with `params.estimate_scale` (see `match_estimating_scale`).
   MatchResult match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
                     const AreaGraph& dest_graph) const {
+    if (params.estimate_scale) {
+      throw parameter_error("Matcher::match: estimate_scale re-segments the source at each candidate scale; pass the "
+                            "source grid (match(source, dest) or match_estimating_scale), not its graph");
+    }
     check_graph(source, source_graph, "source");
     check_graph(dest, dest_graph, "destination");
     return match_graphs(MapView{&source, &source_graph}, MapView{&dest, &dest_graph});
   }
 
  private:
+  /// The factor (≈ T.scale) in [1 − sweep_range, 1 + sweep_range] × T.scale whose rigidly
+  /// refined transform the maps agree with most, for the source at candidate scale `scale`.
+  double sweep_scale(const OccupancyGrid& source, const OccupancyGrid& dest, const AreaGraph& dest_graph, double scale,
+                     const Similarity2& T, const MatcherParams& p) const {
+    const OccupancyGrid scaled = rescaled_grid(source, scale);
+    const AreaGraph graph = segmenter.segment(scaled);
+    if (graph.areas.empty()) return T.scale;
+    const MapView source_map{&scaled, &graph}, dest_map{&dest, &dest_graph};
+    const detail::MapEdges edges = map_edges(source_map, dest_map);
+    const AreaRaster source_raster = make_area_raster(graph, p.fine_cell_m);
+    const AreaRaster dest_raster = make_area_raster(dest_graph, p.fine_cell_m);
+    const Eigen::Vector2d centre = centroid_of(source_raster);
+    RefineParams rigid = p.refinement;
+    rigid.estimate_scale = false;
+    rigid.gates_m = {0.7, 0.4};
+    double best_factor = 1.0, best = -1.0;
+    const int steps = static_cast<int>(std::floor(p.scale.sweep_range / p.scale.sweep_step + 1e-9));
+    for (int k = -steps; k <= steps; ++k) {
+      const double factor = 1.0 + k * p.scale.sweep_step;
+      const Similarity2 moved = refine_icp(edges.source_points, edges.dest_lookup, scaled_about(T, factor, centre), rigid);
+      const double agreement = measure_evidence(graph, dest_graph, source_raster, dest_raster, edges.source_points,
+                                                edges.source_lookup, edges.dest_points, edges.dest_lookup, moved,
+                                                p.wall_inlier_distance_m, p.passage_distance_m, p.agreement_iou_weight)
+                                   .agreement;
+      if (agreement > best) {
+        best = agreement;
+        best_factor = factor;
+      }
+    }
+    return T.scale * best_factor;
+  }
+
   struct MapView {
     const OccupancyGrid* grid;
     const AreaGraph* graph;
   };
+
+ public:
+  /// The source's scale unknown (match/scale.hpp): the source is segmented with `segmenter` and
+  /// matched at each candidate scale; the best candidate's ICP-refined scale is run once more.
+  /// The result maps the source's frame as given; `source_graph`, when given, receives the
+  /// source's graph at the estimated scale (its cells are the source grid's cells, its metres
+  /// the estimated ones). `timings.segment_source_s` sums every segmentation of the source.
+  MatchResult match_estimating_scale(const OccupancyGrid& source, const OccupancyGrid& dest, const AreaGraph& dest_graph,
+                                     AreaGraph* source_graph = nullptr) const {
+    MatcherParams p = params;
+    p.estimate_scale = true;
+    p.validate();
+    check_graph(dest, dest_graph, "destination");
+    const auto start = std::chrono::steady_clock::now();
+    double segment_s = 0.0;
+    Matcher at_scale = *this;  // matches with the ICP fitting the scale
+    at_scale.params = p;
+    auto run_at = [&](double scale, AreaGraph& graph) {
+      const OccupancyGrid scaled = rescaled_grid(source, scale);
+      const auto segment_start = std::chrono::steady_clock::now();
+      graph = segmenter.segment(scaled);
+      segment_s += detail::seconds_since(segment_start);
+      return at_scale.match_graphs(MapView{&scaled, &graph}, MapView{&dest, &dest_graph});
+    };
+    double best_scale = 1.0, best_agreement = -1.0, best_candidate = 1.0;
+    Similarity2 best_T;
+    std::size_t tried = 0;
+    for (double scale : scale_candidates(p.scale)) {
+      AreaGraph graph;
+      const MatchResult r = run_at(scale, graph);
+      ++tried;
+      if (r.statistics.hypotheses > 0 && r.evidence.agreement > best_agreement) {
+        best_agreement = r.evidence.agreement;
+        best_scale = scale * r.T_dest_source.scale;
+        best_candidate = scale;
+        best_T = r.T_dest_source;
+      }
+    }
+    if (best_agreement >= 0.0 && p.scale.sweep_range > 0.0) {
+      best_scale = best_candidate * sweep_scale(source, dest, dest_graph, best_candidate, best_T, p);
+    }
+    MatchResult result;
+    AreaGraph graph;
+    if (best_agreement < 0.0) {
+      result = run_at(1.0, graph);
+      result.ok = false;
+      result.reason = "the scale could not be estimated: no candidate scale in [" + detail::format_double(p.scale.min_scale) +
+                      ", " + detail::format_double(p.scale.max_scale) + "] gave a transform hypothesis" +
+                      (result.reason.empty() ? "" : " (" + result.reason + ")");
+    } else {
+      const double estimate = std::clamp(best_scale, p.scale.min_scale, p.scale.max_scale);
+      result = run_at(estimate, graph);
+      result.T_dest_source = from_scaled_source(result.T_dest_source, estimate);
+      for (auto& pair : result.matched_areas) pair.T_dest_source = from_scaled_source(pair.T_dest_source, estimate);
+      result.scale_estimated = true;
+      if (!result.ok) result.reason = "at the estimated scale " + detail::format_fixed(result.T_dest_source.scale, 4) + ": " + result.reason;
+    }
+    const GridInfo given{source.width(), source.height(), source.resolution(), source.origin()};
+    result.pixel_transform = to_pixel_transform(result.T_dest_source, given, dest_graph.grid);
+    result.statistics.scales_tried = tried + 1;
+    result.timings.segment_source_s = segment_s;
+    result.timings.total_s = detail::seconds_since(start);
+    result.timings.match_s = result.timings.total_s - segment_s;
+    if (source_graph) *source_graph = std::move(graph);
+    return result;
+  }
+
+ private:
 
   static void check_graph(const OccupancyGrid& grid, const AreaGraph& graph, const char* which) {
     if (graph.grid.width != grid.width() || graph.grid.height != grid.height() ||
@@ -461,6 +585,8 @@ class Matcher {
     const std::vector<Eigen::Vector2d>& edge = edges.source_points;
     const BoundaryLookup& dest_edge = edges.dest_lookup;
     if (params.refine) {
+      RefineParams refinement = params.refinement;
+      refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
       const std::vector<Eigen::Vector2d>* points = &edge;
       const BoundaryLookup* lookup = &dest_edge;
       std::vector<Eigen::Vector2d> area_points;
@@ -473,7 +599,7 @@ class Matcher {
         points = &area_points;
         lookup = &area_lookup;
       }
-      for (auto& f : finalists) f.T = refine_icp(*points, *lookup, f.T, params.refinement);
+      for (auto& f : finalists) f.T = refine_icp(*points, *lookup, f.T, refinement);
       result.statistics.refined = finalists.size();
     }
     for (auto& f : finalists) {

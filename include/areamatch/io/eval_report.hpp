@@ -70,6 +70,11 @@ inline std::vector<std::string> eval_summary_lines(const EvalSummary& s) {
   lines.push_back("time per pair: median " + milliseconds(s.median_total_s) + " ms, mean " + milliseconds(s.mean_total_s) +
                   " ms; matching median " + milliseconds(s.median_match_s) + " ms, mean " + milliseconds(s.mean_match_s) +
                   " ms; segmentation median " + milliseconds(s.median_segment_s) + " ms per map");
+  if (s.scale_estimated > 0 && s.with_truth > 0) {
+    lines.push_back("scale estimated for " + std::to_string(s.scale_estimated) + " pair(s): median scale error " +
+                    format_fixed(100.0 * s.median_scale_error, 2) + " %, largest " +
+                    format_fixed(100.0 * s.max_scale_error, 2) + " %");
+  }
   if (s.not_repeatable) lines.push_back("NOT REPEATABLE: " + std::to_string(s.not_repeatable) + " pair(s) changed between runs");
   return lines;
 }
@@ -123,7 +128,7 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
   using detail::format_double;
   std::string out =
       "name,kind,ambiguous,different_buildings,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
-      "rotation_deg,translation_x_m,translation_y_m,reflected,score,confidence,agreement,wall_agreement,reverse_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,rotation_error_deg,displacement_m,correct,"
+      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,confidence,agreement,wall_agreement,reverse_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,rotation_error_deg,displacement_m,scale_error,correct,"
       "repeatable,runs,failure\n";
   for (const auto& r : rows) {
     const bool ran = r.failure.empty();
@@ -137,6 +142,7 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
            number(1000.0 * t.match_s) + "," + number(1000.0 * t.total_s) + ",";
     out += (ran ? std::string(r.result.ok ? "true" : "false") : std::string()) + "," + csv_field(r.result.reason) + ",";
     out += number(T.rotation * 180.0 / pi) + "," + number(T.translation.x()) + "," + number(T.translation.y()) + "," +
+           number(T.scale) + "," + (ran ? std::string(r.result.scale_estimated ? "true" : "false") : std::string()) + "," +
            (ran ? std::string(T.reflected ? "true" : "false") : std::string()) + ",";
     out += number(r.result.score) + "," + number(r.result.confidence) + ",";
     const MatchEvidence& e = r.result.evidence;
@@ -145,8 +151,8 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
       out += (std::isfinite(v) ? number(v) : std::string()) + ",";
     }
     out += r.error ? format_double(r.error->rotation_error_deg) + "," + format_double(r.error->mean_displacement_m) + "," +
-                         (r.correct ? "true" : "false") + ","
-                   : std::string(",,") + (r.pair.different_buildings && ran ? (r.correct ? "true" : "false") : "") + ",";
+                         format_double(r.error->scale_error) + "," + (r.correct ? "true" : "false") + ","
+                   : std::string(",,,") + (r.pair.different_buildings && ran ? (r.correct ? "true" : "false") : "") + ",";
     out += std::string(r.repeatable ? "true" : "false") + "," + std::to_string(r.runs) + "," + csv_field(r.failure) + "\n";
   }
   return out;
@@ -173,7 +179,10 @@ inline std::string eval_json(const Manifest& manifest, const std::vector<PairEva
          ", \"median_match_s\": " + json_number(s.median_match_s) + ", \"mean_match_s\": " + json_number(s.mean_match_s) +
          ", \"median_segment_s\": " + json_number(s.median_segment_s) +
          ", \"median_rotation_error_deg\": " + json_number(s.median_rotation_error_deg) +
-         ", \"median_displacement_m\": " + json_number(s.median_displacement_m) + "},\n \"pairs\": [";
+         ", \"median_displacement_m\": " + json_number(s.median_displacement_m) +
+         ", \"scale_estimated\": " + std::to_string(s.scale_estimated) +
+         ", \"median_scale_error\": " + json_number(s.median_scale_error) +
+         ", \"max_scale_error\": " + json_number(s.max_scale_error) + "},\n \"pairs\": [";
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto& r = rows[i];
     out += std::string(i ? ",\n  " : "\n  ") + "{\"name\": " + json_quote(r.pair.name) + ", \"kind\": " +
@@ -190,6 +199,7 @@ inline std::string eval_json(const Manifest& manifest, const std::vector<PairEva
     if (r.error) {
       out += ", \"rotation_error_deg\": " + json_number(r.error->rotation_error_deg) +
              ", \"displacement_m\": " + json_number(r.error->mean_displacement_m) +
+             ", \"scale_error\": " + json_number(r.error->scale_error) +
              ", \"correct\": " + (r.correct ? "true" : "false");
     }
     MatchResult shown = r.result;

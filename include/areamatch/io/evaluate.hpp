@@ -69,6 +69,8 @@ struct EvalSummary {
   double median_match_s = 0.0, mean_match_s = 0.0;
   double median_segment_s = 0.0;   ///< per map
   double median_rotation_error_deg = 0.0, median_displacement_m = 0.0;  ///< over rows with truth
+  std::size_t scale_estimated = 0;  ///< rows whose result estimated the source's scale
+  double median_scale_error = 0.0, max_scale_error = 0.0;  ///< over those rows with truth
 };
 
 namespace detail {
@@ -158,7 +160,7 @@ inline PairEvaluation evaluate_pair(const ManifestPair& pair, const CorrectnessT
 
 inline EvalSummary summarize(const std::vector<PairEvaluation>& rows) {
   EvalSummary s;
-  std::vector<double> total, match, segment, rotation, displacement;
+  std::vector<double> total, match, segment, rotation, displacement, scale_errors;
   for (const auto& r : rows) {
     ++s.pairs;
     if (!r.failure.empty()) {
@@ -178,7 +180,9 @@ inline EvalSummary summarize(const std::vector<PairEvaluation>& rows) {
       ++s.same_building;
       s.same_accepted += r.result.ok;
     }
+    s.scale_estimated += r.result.scale_estimated;
     if (!r.error) continue;
+    if (r.result.scale_estimated) scale_errors.push_back(r.error->scale_error);
     ++s.with_truth;
     s.correct += r.correct;
     if (!r.pair.ambiguous) {
@@ -195,6 +199,8 @@ inline EvalSummary summarize(const std::vector<PairEvaluation>& rows) {
   s.median_segment_s = detail::median_of(segment);
   s.median_rotation_error_deg = detail::median_of(rotation);
   s.median_displacement_m = detail::median_of(displacement);
+  s.median_scale_error = detail::median_of(scale_errors);
+  for (double e : scale_errors) s.max_scale_error = std::max(s.max_scale_error, e);
   return s;
 }
 

@@ -91,7 +91,8 @@ inline std::string match_result_json(const MatchResult& r) {
   if (!r.ok) out += ", \"reason\": " + detail::json_quote(r.reason);
   out += ", \"rotation_deg\": " + json_number(T.rotation * 180.0 / pi);
   out += ", \"translation_m\": [" + json_number(T.translation.x()) + ", " + json_number(T.translation.y()) + "]";
-  out += ", \"scale\": " + json_number(T.scale) + ", \"reflected\": " + (T.reflected ? "true" : "false");
+  out += ", \"scale\": " + json_number(T.scale) + ", \"scale_estimated\": " + (r.scale_estimated ? "true" : "false") +
+         ", \"reflected\": " + (T.reflected ? "true" : "false");
   out += ", \"pixel_transform\": [[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) +
          "], [" + json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
   out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence) +

@@ -32,10 +32,12 @@ struct MapPairOptions {
   std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
   std::optional<double> min_score;            ///< reject below this whole-map score
   std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
+  bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
 };
 
 /// Everything one end-to-end run produced: the maps, their Area Graphs and the match, with
-/// `result.timings` covering loading too (`total_s` = load + segment both + match).
+/// `result.timings` covering loading too (`total_s` = load + segment both + match). With
+/// `estimate_scale`, `source_graph` is the source's graph at the estimated scale.
 struct MapPairRun {
   OccupancyGrid source;
   OccupancyGrid dest;
@@ -53,11 +55,16 @@ inline VoronoiSegmenter segmenter_with_door(const std::optional<double>& door_wi
 }
 
 template <class M>
-MatchResult configured_match(M matcher, const MapPairOptions& options, const MapPairRun& run) {
+MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRun& run) {
   matcher.params.allow_reflection = options.allow_reflection;
   if (options.k) matcher.params.k = *options.k;
   if (options.min_score) matcher.params.min_score = *options.min_score;
   if (options.min_agreement) matcher.params.min_agreement = *options.min_agreement;
+  if (options.estimate_scale) {
+    matcher.params.estimate_scale = true;
+    matcher.segmenter = segmenter_with_door(options.source_door_width_m);
+    return matcher.match_estimating_scale(run.source, run.dest, run.dest_graph, &run.source_graph);
+  }
   return matcher.match(run.source, run.source_graph, run.dest, run.dest_graph);
 }
 
@@ -73,7 +80,8 @@ inline MapPairRun match_map_files(const std::string& source_path, const std::str
   run.source = load_map(source_path, options.source_load);
   run.dest = load_map(dest_path, options.dest_load);
   const auto source_start = clock::now();
-  run.source_graph = detail::segmenter_with_door(options.source_door_width_m).segment(run.source);
+  // With estimate_scale the source is segmented at each candidate scale, inside the match.
+  if (!options.estimate_scale) run.source_graph = detail::segmenter_with_door(options.source_door_width_m).segment(run.source);
   const auto dest_start = clock::now();
   run.dest_graph = detail::segmenter_with_door(options.dest_door_width_m).segment(run.dest);
   const auto match_start = clock::now();
@@ -82,9 +90,13 @@ inline MapPairRun match_map_files(const std::string& source_path, const std::str
   const auto end = clock::now();
   using seconds = std::chrono::duration<double>;
   MatchTimings& t = run.result.timings;
-  t.segment_source_s = seconds(dest_start - source_start).count();
   t.segment_dest_s = seconds(match_start - dest_start).count();
-  t.match_s = seconds(end - match_start).count();
+  if (options.estimate_scale) {
+    t.match_s = seconds(end - match_start).count() - t.segment_source_s;  // segment_source_s from the match
+  } else {
+    t.segment_source_s = seconds(dest_start - source_start).count();
+    t.match_s = seconds(end - match_start).count();
+  }
   t.total_s = seconds(end - start).count();
   return run;
 }

@@ -31,6 +31,10 @@ struct RefineParams {
   double point_spacing_m = 0.1;     ///< source boundary points are thinned to about this spacing
   int max_points = 2000;            ///< and to at most this many
   double lookup_cell_m = 0.1;       ///< cell of the destination's nearest-boundary-point lookup
+  /// Also fit the scale (a similarity instead of a rigid motion); each iteration may change it by
+  /// at most `max_scale_step` (factor), so a bad early match cannot collapse the map.
+  bool estimate_scale = false;
+  double max_scale_step = 1.1;
 
   void validate() const {
     if (gates_m.empty()) throw parameter_error("RefineParams::gates_m must not be empty");
@@ -40,6 +44,9 @@ struct RefineParams {
     detail::require_positive(point_spacing_m, "RefineParams::point_spacing_m");
     if (max_points < 3) throw parameter_error("RefineParams::max_points must be >= 3");
     detail::require_positive(lookup_cell_m, "RefineParams::lookup_cell_m");
+    if (!(max_scale_step >= 1.0 && std::isfinite(max_scale_step))) {
+      throw parameter_error("RefineParams::max_scale_step must be a finite factor >= 1");
+    }
   }
 };
 
@@ -196,8 +203,9 @@ inline double boundary_inlier_fraction(const std::vector<Eigen::Vector2d>& sourc
   return static_cast<double>(inliers) / static_cast<double>(source_points.size());
 }
 
-/// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept) that best lays
-/// `source_points` onto the destination boundary. Returns `initial` when too few points match.
+/// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept; the scale fitted
+/// too with `params.estimate_scale`) that best lays `source_points` onto the destination
+/// boundary. Returns `initial` when too few points match.
 inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
                               const Similarity2& initial, const RefineParams& params) {
   Similarity2 T = initial;
@@ -209,7 +217,7 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
   };
   std::vector<Match> matches;
   matches.reserve(source_points.size());
-  const Similarity2 shape{0.0, Eigen::Vector2d::Zero(), initial.scale, initial.reflected};
+  Similarity2 shape{0.0, Eigen::Vector2d::Zero(), initial.scale, initial.reflected};
   for (double gate : params.gates_m) {
     for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
       matches.clear();
@@ -244,11 +252,25 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         cross += a.x() * b.y() - a.y() * b.x();
       }
       const double angle = std::atan2(cross, dot);
+      const Eigen::Rotation2Dd turn(angle);
+      // With scale: the factor k minimising Σ |b − k·R·a|² is Σ b·(R·a) / Σ |a|².
+      double k = 1.0;
+      if (params.estimate_scale) {
+        double along = 0.0, norm2 = 0.0;
+        for (const auto& m : matches) {
+          const Eigen::Vector2d a = m.from - mean_from;
+          along += (m.to - mean_to).dot(turn * a);
+          norm2 += a.squaredNorm();
+        }
+        if (norm2 > 0.0 && along > 0.0) k = std::clamp(along / norm2, 1.0 / params.max_scale_step, params.max_scale_step);
+        shape.scale *= k;
+      }
       const Similarity2 previous = T;
       T.rotation = wrap_angle(angle);
-      T.translation = mean_to - Eigen::Rotation2Dd(angle) * mean_from;
+      T.scale = shape.scale;
+      T.translation = mean_to - turn * (k * mean_from);
       if (std::abs(wrap_angle(T.rotation - previous.rotation)) < 1e-5 &&
-          (T.translation - previous.translation).norm() < 1e-4) {
+          (T.translation - previous.translation).norm() < 1e-4 && std::abs(k - 1.0) < 1e-6) {
         break;
       }
     }

@@ -51,6 +51,7 @@ struct MatchStatistics {
   std::size_t clusters = 0;
   std::size_t verified = 0;    ///< candidates scored on the whole map
   std::size_t refined = 0;
+  std::size_t scales_tried = 0;  ///< source scales matched (`estimate_scale`), else 0
 };
 
 struct MatchResult {
@@ -62,6 +63,9 @@ struct MatchResult {
   /// share of the source's free-space edge on the destination's, w = `wall_score_weight` (1 by
   /// default: the edge share); the paper preset reports its Σ OP over the mutual pairs.
   double score = 0.0;
+  /// Whether the source's scale was estimated (`MatcherParams::estimate_scale`); the estimate is
+  /// `T_dest_source.scale` (the source's true resolution / its given one).
+  bool scale_estimated = false;
   /// min(margin_different, margin_mirrored): how much better the result scores than the
   /// best clearly different transform and than the best transform on the other side of the
   /// mirror. Small means ambiguous (a near-symmetric building).
