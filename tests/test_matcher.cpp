@@ -171,6 +171,31 @@ TEST_CASE("different synthetic buildings are rejected, their true pairs accepted
   CHECK(rejected == buildings);
 }
 
+TEST_CASE("partial maps both ways: a 40 %-explored robot map onto its layout, and the layout onto it") {
+  const int cases = areamatch_test::quick_tests() ? 2 : 8;
+  int robot_onto_layout = 0, layout_onto_robot = 0;
+  for (int i = 0; i < cases; ++i) {
+    const auto building = generate_building({}, 900 + static_cast<std::uint64_t>(i));
+    RobotMapParams rp;
+    rp.rotation_rad = 0.8 * i - 3.0;
+    rp.explored_fraction = 0.4;
+    const auto robot = make_robot_map(building, rp, 950 + static_cast<std::uint64_t>(i));
+    Matcher<> matcher;
+    matcher.segmenter.params.with_door_width(0.9);
+    const MatchResult forward = matcher.match(robot.grid, building.layout);
+    const MatchResult backward = matcher.match(building.layout, robot.grid);
+    const Similarity2 truth_back = robot.T_dest_source.inverse();
+    auto close = [](const Similarity2& a, const Similarity2& b) {
+      return std::abs(wrap_angle(a.rotation - b.rotation)) < 2.0 * pi / 180.0 && (a.translation - b.translation).norm() < 0.3;
+    };
+    MESSAGE("case " << i << ": agreement " << forward.evidence.agreement << " / " << backward.evidence.agreement);
+    robot_onto_layout += forward.ok && close(forward.T_dest_source, robot.T_dest_source);
+    layout_onto_robot += backward.ok && close(backward.T_dest_source, truth_back);
+  }
+  CHECK(robot_onto_layout == cases);
+  CHECK(layout_onto_robot == cases);
+}
+
 TEST_CASE("room correspondences on bent robot maps: right rooms, local transforms that fit better") {
   // A smoothly bent robot map (SLAM drift): every corresponding pair must name the right room;
   // the truth is the layout's room under the area's centroid (the bend moves it < 0.5 m).

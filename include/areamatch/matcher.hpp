@@ -107,8 +107,8 @@ struct MatcherParams {
   /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): true pairs scored
   /// 0.841 and more, pairs of different buildings at most 0.828.
   double min_agreement = 0.835;
-  /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the reverse
-  /// wall agreement). A map confirmed on little of the other's free space is less certain.
+  /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
+  /// the two wall agreements). A map confirmed on little of the other's free space is less certain.
   double agreement_iou_weight = 0.2;
   /// Below this margin to a different or mirrored rival the result is rejected (ok = false).
   double min_confidence = 0.0;
@@ -180,11 +180,6 @@ struct ScoredTransform {
   double score = 0.0;
 };
 
-/// Both maps' free-space edges: sparse points to move (ICP, scores) and dense lookups to land on.
-struct MapEdges {
-  std::vector<Eigen::Vector2d> source_points, dest_points;
-  BoundaryLookup source_lookup, dest_lookup;
-};
 
 }  // namespace detail
 
@@ -276,8 +271,7 @@ class Matcher {
     for (int k = -steps; k <= steps; ++k) {
       const double factor = 1.0 + k * p.scale.sweep_step;
       const Similarity2 moved = refine_icp(edges.source_points, edges.dest_lookup, scaled_about(T, factor, centre), rigid);
-      const double agreement = measure_evidence(graph, dest_graph, source_raster, dest_raster, edges.source_points,
-                                                edges.source_lookup, edges.dest_points, edges.dest_lookup, moved,
+      const double agreement = measure_evidence(graph, dest_graph, source_raster, dest_raster, edges, moved,
                                                 p.wall_inlier_distance_m, p.passage_distance_m, p.agreement_iou_weight)
                                    .agreement;
       if (agreement > best) {
@@ -460,8 +454,7 @@ class Matcher {
     compute_margins(source_fine, dest_fine, finalists, result);
     result.matched_areas = area_correspondences(*source_map.grid, source, dest, source_fine, dest_fine, edges.dest_lookup,
                                                 best.T, params.correspondences);
-    result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges.source_points, edges.source_lookup,
-                                       edges.dest_points, edges.dest_lookup, best.T, params.wall_inlier_distance_m,
+    result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
 
     if (params.selection == Selection::whole_map && result.score < params.min_score) {
@@ -473,6 +466,7 @@ class Matcher {
                     detail::format_fixed(result.evidence.agreement, 3) + " < min_agreement " +
                     detail::format_double(params.min_agreement) + " (the destination's walls near the source's " +
                     "free space explained: " + detail::format_fixed(result.evidence.reverse_wall_agreement, 3) +
+                    ", the source's near the destination's: " + detail::format_fixed(result.evidence.forward_wall_agreement, 3) +
                     ", free-space IoU " + detail::format_fixed(result.evidence.free_iou, 3) + ")");
     }
     result.ambiguous = result.confidence < params.ambiguity_margin;
@@ -617,7 +611,9 @@ class Matcher {
     const double margin = std::max(r.gates_m.front(), params.wall_inlier_distance_m);
     detail::MapEdges e;
     e.source_points = detail::free_boundary_points(*source.grid, *source.graph, r.point_spacing_m, max_points);
-    e.dest_points = detail::free_boundary_points(*dest.grid, *dest.graph, r.point_spacing_m, max_points);
+    e.source_walls = detail::without_frontiers(*source.grid, e.source_points);
+    e.dest_walls = detail::without_frontiers(
+        *dest.grid, detail::free_boundary_points(*dest.grid, *dest.graph, r.point_spacing_m, max_points));
     e.source_lookup = BoundaryLookup(detail::free_boundary_points(*source.grid, *source.graph, 0.5 * r.lookup_cell_m),
                                      r.lookup_cell_m, margin);
     e.dest_lookup = BoundaryLookup(detail::free_boundary_points(*dest.grid, *dest.graph, 0.5 * r.lookup_cell_m),

@@ -128,7 +128,7 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
   using detail::format_double;
   std::string out =
       "name,kind,ambiguous,different_buildings,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
-      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,confidence,agreement,wall_agreement,reverse_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,rotation_error_deg,displacement_m,scale_error,correct,"
+      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,confidence,agreement,wall_agreement,reverse_wall_agreement,forward_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,rotation_error_deg,displacement_m,scale_error,correct,"
       "repeatable,runs,failure\n";
   for (const auto& r : rows) {
     const bool ran = r.failure.empty();
@@ -146,7 +146,7 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
            (ran ? std::string(T.reflected ? "true" : "false") : std::string()) + ",";
     out += number(r.result.score) + "," + number(r.result.confidence) + ",";
     const MatchEvidence& e = r.result.evidence;
-    for (double v : {e.agreement, e.wall_agreement, e.reverse_wall_agreement, e.free_iou, e.source_on_dest,
+    for (double v : {e.agreement, e.wall_agreement, e.reverse_wall_agreement, e.forward_wall_agreement, e.free_iou, e.source_on_dest,
                      e.dest_on_source, e.passage_agreement, e.room_agreement}) {
       out += (std::isfinite(v) ? number(v) : std::string()) + ",";
     }

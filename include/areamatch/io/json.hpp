@@ -103,6 +103,7 @@ inline std::string match_result_json(const MatchResult& r) {
   out += ", \"evidence\": {\"agreement\": " + json_number(e.agreement) +
          ", \"wall_agreement\": " + json_number(e.wall_agreement) +
          ", \"reverse_wall_agreement\": " + json_number(e.reverse_wall_agreement) +
+         ", \"forward_wall_agreement\": " + json_number(e.forward_wall_agreement) +
          ", \"free_iou\": " + json_number(e.free_iou) + ", \"source_on_dest\": " + json_number(e.source_on_dest) +
          ", \"dest_on_source\": " + json_number(e.dest_on_source) +
          ", \"passage_agreement\": " + json_number(e.passage_agreement) +

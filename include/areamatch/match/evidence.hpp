@@ -10,6 +10,7 @@
 /// look both ways and at the building's structure, which chance agrees with much less.
 
 #include "../area_graph.hpp"
+#include "../grid.hpp"
 #include "../transform.hpp"
 #include "raster.hpp"
 #include "refine.hpp"
@@ -29,9 +30,12 @@ struct MatchEvidence {
   /// Share of the source's free-space edge within `wall_inlier_distance_m` of the destination's
   /// (the whole-map score with the default weights).
   double wall_agreement = 0.0;
-  /// The same from the destination's side, counting only the destination's edge where the
-  /// source has free space nearby (so a partial map is not penalised for what it did not see).
+  /// Share of the destination's walls near the source's free space that lie on the source's
+  /// free-space edge: only where the source has been (a partial map is not penalised for what it
+  /// did not see), and walls only (free space ending at unknown cells is a frontier, not a wall).
   double reverse_wall_agreement = 0.0;
+  /// The same for the source's walls near the destination's free space.
+  double forward_wall_agreement = 0.0;
   /// IoU of the two maps' area-covered free space.
   double free_iou = 0.0;
   /// Share of the source's area-covered free space landing on the destination's, and back.
@@ -43,14 +47,23 @@ struct MatchEvidence {
   /// Share of the common free space that lies in area pairs overlapping with IoU ≥ 0.5: whether
   /// the two segmentations cut the common part into the same rooms.
   double room_agreement = 0.0;
-  /// The number the decision uses (`MatcherParams::min_agreement`): (1 − w) ·
-  /// reverse_wall_agreement + w · free_iou, w = `MatcherParams::agreement_iou_weight`. The
-  /// destination's walls where the source has been must be the source's walls; and the more of
-  /// the two maps' free space is shared, the surer that is.
+  /// The number the decision uses (`MatcherParams::min_agreement`): (1 − w) · max(forward,
+  /// reverse wall agreement) + w · free_iou, w = `MatcherParams::agreement_iou_weight`. Where
+  /// both maps have been, one map's walls must all be walls of the other (the plainer map's: a
+  /// layout's walls are in a SLAM map, not the SLAM map's furniture in the layout); and the more
+  /// free space is shared, the surer that is.
   double agreement = 0.0;
 };
 
 namespace detail {
+
+/// Both maps' free-space edges: sparse points to move (ICP, scores) and dense lookups to land
+/// on; the walls are the sparse points without frontiers (`without_frontiers`).
+struct MapEdges {
+  std::vector<Eigen::Vector2d> source_points, dest_points;
+  std::vector<Eigen::Vector2d> source_walls, dest_walls;
+  BoundaryLookup source_lookup, dest_lookup;
+};
 
 /// Whether a world point is in, or within one raster cell of, a labelled cell of `raster`.
 inline bool near_labelled(const AreaRaster& raster, const Eigen::Vector2d& world) {
@@ -63,27 +76,49 @@ inline bool near_labelled(const AreaRaster& raster, const Eigen::Vector2d& world
   return false;
 }
 
+/// The edge points (from `free_boundary_points`) that lie on a wall: those with an occupied
+/// 4-neighbour (or the grid's border). Free space ending at unknown cells is where the robot
+/// stopped looking (an unexplored room's doorway), not a wall the other map must have.
+inline std::vector<Eigen::Vector2d> without_frontiers(const OccupancyGrid& grid, const std::vector<Eigen::Vector2d>& points) {
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size());
+  const Eigen::Affine2d to_pixel = grid.pixel_from_world();
+  auto occupied_or_off = [&](int x, int y) {
+    return x < 0 || y < 0 || x >= grid.width() || y >= grid.height() || grid.at(x, y) == CellState::occupied;
+  };
+  for (const auto& p : points) {
+    const Eigen::Vector2d px = to_pixel * p;
+    const int x = static_cast<int>(std::lround(px.x())), y = static_cast<int>(std::lround(px.y()));
+    if (occupied_or_off(x - 1, y) || occupied_or_off(x + 1, y) || occupied_or_off(x, y - 1) || occupied_or_off(x, y + 1)) {
+      out.push_back(p);
+    }
+  }
+  return out;
+}
+
 }  // namespace detail
 
-/// The measures of `MatchEvidence` for T_dest_source. `source_edge` / `dest_edge` are the maps'
-/// free-space edge points (world metres) and lookups over them; the rasters share one cell size.
+/// The measures of `MatchEvidence` for T_dest_source, from both maps' edges (world metres) and
+/// area rasters of one cell size.
 inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& dest, const AreaRaster& source_raster,
-                                      const AreaRaster& dest_raster, const std::vector<Eigen::Vector2d>& source_edge,
-                                      const BoundaryLookup& source_lookup, const std::vector<Eigen::Vector2d>& dest_edge,
-                                      const BoundaryLookup& dest_lookup, const Similarity2& T_dest_source,
-                                      double wall_inlier_distance_m, double passage_distance_m,
-                                      double iou_weight) {
+                                      const AreaRaster& dest_raster, const detail::MapEdges& edges,
+                                      const Similarity2& T_dest_source, double wall_inlier_distance_m,
+                                      double passage_distance_m, double iou_weight) {
   MatchEvidence e;
   const Similarity2 T_source_dest = T_dest_source.inverse();
-  e.wall_agreement = boundary_inlier_fraction(source_edge, dest_lookup, T_dest_source, wall_inlier_distance_m);
+  e.wall_agreement = boundary_inlier_fraction(edges.source_points, edges.dest_lookup, T_dest_source, wall_inlier_distance_m);
 
-  // Destination edge where the source has free space: explained by the source's edge?
-  std::vector<Eigen::Vector2d> shared_dest_edge;
-  for (const auto& q : dest_edge) {
-    if (detail::near_labelled(source_raster, T_source_dest * q)) shared_dest_edge.push_back(q);
-  }
-  e.reverse_wall_agreement =
-      boundary_inlier_fraction(shared_dest_edge, source_lookup, T_source_dest, wall_inlier_distance_m);
+  // One map's walls where the other has free space nearby: on the other's edge?
+  auto shared_walls = [&](const std::vector<Eigen::Vector2d>& walls, const AreaRaster& other, const Similarity2& T,
+                          const BoundaryLookup& other_edge) {
+    std::vector<Eigen::Vector2d> near;
+    for (const auto& q : walls) {
+      if (detail::near_labelled(other, T * q)) near.push_back(q);
+    }
+    return boundary_inlier_fraction(near, other_edge, T, wall_inlier_distance_m);
+  };
+  e.reverse_wall_agreement = shared_walls(edges.dest_walls, source_raster, T_source_dest, edges.source_lookup);
+  e.forward_wall_agreement = shared_walls(edges.source_walls, dest_raster, T_dest_source, edges.dest_lookup);
 
   // Cell overlaps per area pair, from the source cells.
   const std::size_t ns = source.areas.size(), nd = dest.areas.size();
@@ -103,7 +138,7 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   e.free_iou = source_cells + dest_cells - common > 0.0 ? common / (source_cells + dest_cells - common) : 0.0;
   e.source_on_dest = source_cells > 0.0 ? common / source_cells : 0.0;
   e.dest_on_source = dest_cells > 0.0 ? std::min(1.0, common / dest_cells) : 0.0;
-  e.agreement = (1.0 - iou_weight) * e.reverse_wall_agreement + iou_weight * e.free_iou;
+  e.agreement = (1.0 - iou_weight) * std::max(e.forward_wall_agreement, e.reverse_wall_agreement) + iou_weight * e.free_iou;
 
   double consistent = 0.0;
   for (std::size_t i = 0; i < ns; ++i) {
