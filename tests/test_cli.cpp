@@ -179,7 +179,8 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
 
 TEST_CASE("match --estimate-scale: a source whose resolution is wrong") {
   const std::string dir = areamatch_test::temp_dir() + "/scale_pair";
-  REQUIRE(run("generate " + dir + " --seed 9 --width 24 --height 16 --rotation 40").status == 0);
+  // Small: the command runs the pipeline ~20 times, and the sanitizer build runs this too.
+  REQUIRE(run("generate " + dir + " --seed 9 --width 15 --height 11 --rotation 40").status == 0);
   const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
   // The robot map is 0.05 m per pixel; told 0.08, the true scale is 0.625.
   const Run r = run("match " + pair + " --source-resolution 0.08 --door-width 0.9 --estimate-scale --json", false);
@@ -250,7 +251,7 @@ TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth
 
 TEST_CASE("eval --cross-buildings: the maps of different generated buildings are rejected") {
   const std::string dir = areamatch_test::temp_dir() + "/eval_cross";
-  REQUIRE(run("generate " + dir + " --count 2 --seed 40 --width 18 --height 14").status == 0);
+  REQUIRE(run("generate " + dir + " --count 2 --seed 40 --width 15 --height 11").status == 0);
   const std::string out = areamatch_test::temp_dir() + "/eval_cross_out";
   const Run eval = run("eval " + dir + "/pairs.json --cross-buildings --out " + out, false);
   INFO(eval.out);
