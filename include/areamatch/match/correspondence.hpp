@@ -60,29 +60,15 @@ namespace detail {
 inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const OccupancyGrid& grid, const AreaGraph& graph,
                                                                   double spacing_m) {
   std::vector<std::vector<Eigen::Vector2d>> out(graph.areas.size());
-  const GridInfo& g = graph.grid;
-  const PixelBounds bounds = label_bounds(graph, 0);
-  const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
-  const int bins_x = (g.width + step - 1) / step;
-  std::vector<std::uint8_t> taken(static_cast<std::size_t>(bins_x) * static_cast<std::size_t>((g.height + step - 1) / step), 0);
   const auto& cells = grid.cells();
-  auto free_at = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < g.width && y < g.height &&
-           cells[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x)] ==
-               CellState::free;
-  };
-  const Eigen::Affine2d world = g.world_from_pixel();
-  for (int y = bounds.row0; y < bounds.row1; ++y) {
-    for (int x = bounds.col0; x < bounds.col1; ++x) {
-      const int label = graph.labels[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x)];
-      if (label < 0 || !free_at(x, y)) continue;
-      if (free_at(x - 1, y) && free_at(x + 1, y) && free_at(x, y - 1) && free_at(x, y + 1)) continue;
-      auto& bin = taken[static_cast<std::size_t>(y / step) * static_cast<std::size_t>(bins_x) + static_cast<std::size_t>(x / step)];
-      if (bin) continue;
-      bin = 1;
-      out[static_cast<std::size_t>(label)].push_back(world * Eigen::Vector2d(x, y));
-    }
-  }
+  detail::for_each_edge_cell(
+      graph.grid, label_bounds(graph, 0), [&](std::size_t i) { return cells[i] == CellState::free; }, spacing_m,
+      [&](std::size_t i, const Eigen::Vector2d& p) {
+        const int label = graph.labels[i];
+        if (label < 0) return false;  // free but in no area: not this function's, leave the square
+        out[static_cast<std::size_t>(label)].push_back(p);
+        return true;
+      });
   return out;
 }
 
@@ -90,10 +76,10 @@ inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const Occupanc
 
 /// For every source area: its local transform and the destination area it corresponds to under
 /// it (reported when they overlap by at least `params.min_overlap`), in source-area order.
-/// `dest_walls` looks up the destination's free-space edge; the rasters share one cell size.
+/// `dest_edge` looks up the destination's free-space edge; the rasters share one cell size.
 inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& source_grid, const AreaGraph& source,
                                                          const AreaGraph& dest, const AreaRaster& source_raster,
-                                                         const AreaRaster& dest_raster, const BoundaryLookup& dest_walls,
+                                                         const AreaRaster& dest_raster, const BoundaryLookup& dest_edge,
                                                          const Similarity2& T_dest_source,
                                                          const CorrespondenceParams& params) {
   params.validate();
@@ -106,9 +92,9 @@ inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& so
     Similarity2 T = T_dest_source;
     double on_walls = std::numeric_limits<double>::quiet_NaN();
     if (walls[i].size() >= params.min_wall_points) {
-      on_walls = boundary_inlier_fraction(walls[i], dest_walls, T, params.wall_inlier_distance_m);
-      const Similarity2 local = refine_icp(walls[i], dest_walls, T, params.local);
-      const double local_on_walls = boundary_inlier_fraction(walls[i], dest_walls, local, params.wall_inlier_distance_m);
+      on_walls = boundary_inlier_fraction(walls[i], dest_edge, T, params.wall_inlier_distance_m);
+      const Similarity2 local = refine_icp(walls[i], dest_edge, T, params.local);
+      const double local_on_walls = boundary_inlier_fraction(walls[i], dest_edge, local, params.wall_inlier_distance_m);
       const Eigen::Vector2d centroid = source.areas[i].centroid;
       const bool close = std::abs(wrap_angle(local.rotation - T.rotation)) <= params.max_rotation_rad &&
                          (local * centroid - T * centroid).norm() <= params.max_shift_m;

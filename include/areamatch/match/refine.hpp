@@ -52,31 +52,39 @@ struct RefineParams {
 
 namespace detail {
 
-/// World positions of the cells within `bounds` on the edge of a region (a cell inside with a
-/// 4-neighbour outside or off the grid), thinned to one per `spacing_m` square, in scan order, then evenly to
-/// at most `max_points`. `inside(index)` tells whether the cell with that row-major index is in it.
-template <class Inside>
-std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m,
-                                             std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+/// Visits the cells within `bounds` on the edge of a region (a cell inside with a 4-neighbour
+/// outside or off the grid), at most one per `spacing_m` square, in scan order: `take(index,
+/// world)` gets the cell's row-major index and world position and returns whether it took it
+/// (the square is then used up). `inside(index)` tells whether a cell is in the region.
+template <class Inside, class Take>
+void for_each_edge_cell(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m, Take take) {
   const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
   const int bins_x = (g.width + step - 1) / step;
   std::vector<std::uint8_t> taken(static_cast<std::size_t>(bins_x) * static_cast<std::size_t>((g.height + step - 1) / step), 0);
-  auto in = [&](int x, int y) {
-    return x >= 0 && y >= 0 && x < g.width && y < g.height &&
-           inside(static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x));
-  };
+  auto index_of = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x); };
+  auto in = [&](int x, int y) { return x >= 0 && y >= 0 && x < g.width && y < g.height && inside(index_of(x, y)); };
   const Eigen::Affine2d world = g.world_from_pixel();
-  std::vector<Eigen::Vector2d> points;
   for (int y = bounds.row0; y < bounds.row1; ++y) {
     for (int x = bounds.col0; x < bounds.col1; ++x) {
       if (!in(x, y)) continue;
       if (in(x - 1, y) && in(x + 1, y) && in(x, y - 1) && in(x, y + 1)) continue;
       auto& bin = taken[static_cast<std::size_t>(y / step) * static_cast<std::size_t>(bins_x) + static_cast<std::size_t>(x / step)];
       if (bin) continue;
-      bin = 1;
-      points.push_back(world * Eigen::Vector2d(x, y));
+      if (take(index_of(x, y), Eigen::Vector2d(world * Eigen::Vector2d(x, y)))) bin = 1;
     }
   }
+}
+
+/// World positions of the edge cells of a region (`for_each_edge_cell`), then thinned evenly to
+/// at most `max_points`.
+template <class Inside>
+std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m,
+                                             std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+  std::vector<Eigen::Vector2d> points;
+  for_each_edge_cell(g, bounds, inside, spacing_m, [&](std::size_t, const Eigen::Vector2d& p) {
+    points.push_back(p);
+    return true;
+  });
   if (points.size() > max_points) {
     std::vector<Eigen::Vector2d> thinned;
     thinned.reserve(max_points);
