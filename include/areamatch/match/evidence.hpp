@@ -57,10 +57,10 @@ struct MatchEvidence {
 
 namespace detail {
 
-/// Both maps' free-space edges: sparse points to move (ICP, scores) and dense lookups to land
-/// on; the walls are the sparse points without frontiers (`without_frontiers`).
+/// Both maps' free-space edges: the source's sparse points to move (ICP, scores), both maps'
+/// sparse walls (edge points without frontiers, `without_frontiers`) and dense lookups to land on.
 struct MapEdges {
-  std::vector<Eigen::Vector2d> source_points, dest_points;
+  std::vector<Eigen::Vector2d> source_points;
   std::vector<Eigen::Vector2d> source_walls, dest_walls;
   BoundaryLookup source_lookup, dest_lookup;
 };
