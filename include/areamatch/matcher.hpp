@@ -252,12 +252,12 @@ class Matcher {
 
  private:
   /// The factor (≈ T.scale) in [1 − sweep_range, 1 + sweep_range] × T.scale whose rigidly
-  /// refined transform the maps agree with most, for the source at candidate scale `scale`.
-  double sweep_scale(const OccupancyGrid& source, const OccupancyGrid& dest, const AreaGraph& dest_graph, double scale,
-                     const Similarity2& T, const MatcherParams& p) const {
-    const OccupancyGrid scaled = rescaled_grid(source, scale);
-    const AreaGraph graph = segmenter.segment(scaled);
+  /// refined transform the maps agree with most, for the source at candidate scale `scale`
+  /// (`graph`: its segmentation at that scale).
+  double sweep_scale(const OccupancyGrid& source, const AreaGraph& graph, const OccupancyGrid& dest,
+                     const AreaGraph& dest_graph, double scale, const Similarity2& T, const MatcherParams& p) const {
     if (graph.areas.empty()) return T.scale;
+    const OccupancyGrid scaled = rescaled_grid(source, scale);
     const MapView source_map{&scaled, &graph}, dest_map{&dest, &dest_graph};
     const detail::MapEdges edges = map_edges(source_map, dest_map);
     const AreaRaster source_raster = make_area_raster(graph, p.fine_cell_m);
@@ -312,6 +312,7 @@ class Matcher {
     };
     double best_scale = 1.0, best_agreement = -1.0, best_candidate = 1.0;
     Similarity2 best_T;
+    AreaGraph best_graph;  // the source segmented at best_candidate
     std::size_t tried = 0;
     for (double scale : scale_candidates(p.scale)) {
       AreaGraph graph;
@@ -322,10 +323,11 @@ class Matcher {
         best_scale = scale * r.T_dest_source.scale;
         best_candidate = scale;
         best_T = r.T_dest_source;
+        best_graph = std::move(graph);
       }
     }
     if (best_agreement >= 0.0 && p.scale.sweep_range > 0.0) {
-      best_scale = best_candidate * sweep_scale(source, dest, dest_graph, best_candidate, best_T, p);
+      best_scale = best_candidate * sweep_scale(source, best_graph, dest, dest_graph, best_candidate, best_T, p);
     }
     MatchResult result;
     AreaGraph graph;
