@@ -102,6 +102,10 @@ TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
   const Run door = run("segment " + dir + "/layout.yaml --door-width -1");
   CHECK(door.status == 2);
   CHECK(door.out.find("--door-width must be positive") != std::string::npos);
+  REQUIRE(run("segment " + dir + "/layout.yaml --speckle-size 0.5").status == 0);
+  const Run speckle = run("segment " + dir + "/layout.yaml --speckle-size -1");
+  CHECK(speckle.status == 2);
+  CHECK(speckle.out.find("--speckle-size must not be negative") != std::string::npos);
 }
 
 TEST_CASE("bad input: exit status 2 and a message naming the problem") {

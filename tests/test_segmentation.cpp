@@ -158,6 +158,35 @@ TEST_CASE("synthetic buildings: every room is one area, every door one passage n
   CHECK(doors_found == doors);
 }
 
+TEST_CASE("speckles: small blobs go by area, and by size with max_speckle_size_m") {
+  // 0.1 m cells. A 4x4 blob (0.16 m^2, 0.4 m across), a 1x3 dot (0.03 m^2) and a free-standing
+  // wall 20 cells long (0.2 m^2, 2 m across) in a room.
+  std::vector<std::string> rows(16, std::string(30, '.'));
+  rows.front() = rows.back() = std::string(30, '#');
+  for (auto& row : rows) row.front() = row.back() = '#';
+  for (int r = 4; r < 8; ++r) rows[r].replace(5, 4, "####");
+  rows[10].replace(5, 3, "###");
+  for (int r = 12; r < 14; ++r) rows[r].replace(5, 20, std::string(20, '#'));
+  const OccupancyGrid g = grid_from_text(rows);
+  auto free_at = [&](const FreeSpace& space, int col, int row) { return space.is_free(col - space.offset_col, row - space.offset_row); };
+
+  const FreeSpace by_area = binarize(g);  // defaults: area only (0.05 m^2)
+  CHECK(free_at(by_area, 6, 10));         // the dot is erased
+  CHECK_FALSE(free_at(by_area, 6, 5));    // the blob is not
+  CHECK_FALSE(free_at(by_area, 10, 12));  // nor the wall
+
+  BinarizeParams by_size;
+  by_size.max_speckle_size_m = 0.5;
+  const FreeSpace sized = binarize(g, by_size);
+  CHECK(free_at(sized, 6, 10));
+  CHECK(free_at(sized, 6, 5));            // 0.4 m across: erased
+  CHECK_FALSE(free_at(sized, 10, 12));    // 2 m long: a wall, kept
+  CHECK_FALSE(free_at(sized, 0, 5));      // the outer walls touch the border: kept
+
+  by_size.max_speckle_size_m = -0.1;
+  CHECK_THROWS_AS(binarize(g, by_size), parameter_error);
+}
+
 TEST_CASE("a door exactly as wide as the door width is a passage") {
   // The door width is the widest opening that still separates: drawn at exactly W on the grid,
   // a door measures up to one cell more, which the parameter's slack absorbs.
