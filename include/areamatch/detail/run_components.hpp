@@ -8,20 +8,36 @@
 
 namespace areamatch::detail {
 
-/// Connected components of the cells with `mask == value`, found on horizontal runs (fast on
-/// maps, which are long runs). Calls `on_component(runs)` with each component's runs as
-/// (row, first col, end col) triples.
 struct CellRun {
   int row, begin, end;
 };
 
-template <class OnComponent>
-void for_each_run_component(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value, bool eight,
-                            OnComponent&& on_component) {
+/// The horizontal runs of the cells with `mask == value`, in raster order, and their connected
+/// components (fast on maps, which are long runs).
+struct RunComponents {
   std::vector<CellRun> runs;
-  std::vector<std::size_t> row_start(static_cast<std::size_t>(height) + 1, 0);
+  std::vector<std::size_t> row_start;  ///< the runs of row r are [row_start[r], row_start[r + 1])
+  std::vector<std::size_t> component;  ///< per run: the first run of its component
+
+  static constexpr std::size_t none = static_cast<std::size_t>(-1);
+  /// The run holding cell (col, row), or `none`.
+  std::size_t run_at(int col, int row) const {
+    const auto first = runs.begin() + static_cast<std::ptrdiff_t>(row_start[static_cast<std::size_t>(row)]);
+    const auto last = runs.begin() + static_cast<std::ptrdiff_t>(row_start[static_cast<std::size_t>(row) + 1]);
+    const auto after = std::upper_bound(first, last, col, [](int c, const CellRun& run) { return c < run.begin; });
+    if (after == first || col >= (after - 1)->end) return none;
+    return static_cast<std::size_t>(after - 1 - runs.begin());
+  }
+};
+
+/// `RunComponents` of the cells with `mask == value`, 4-connected or with `eight` 8-connected.
+inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value,
+                                    bool eight) {
+  RunComponents out;
+  auto& runs = out.runs;
+  out.row_start.assign(static_cast<std::size_t>(height) + 1, 0);
   for (int r = 0; r < height; ++r) {
-    row_start[r] = runs.size();
+    out.row_start[r] = runs.size();
     const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * width];
     int c = 0;
     while (c < width) {
@@ -34,8 +50,9 @@ void for_each_run_component(const std::vector<std::uint8_t>& mask, int width, in
       runs.push_back({r, begin, c});
     }
   }
-  row_start[height] = runs.size();
-  std::vector<std::size_t> parent(runs.size());
+  out.row_start[height] = runs.size();
+  std::vector<std::size_t>& parent = out.component;
+  parent.resize(runs.size());
   for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
   auto find = [&](std::size_t i) {
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
@@ -43,17 +60,27 @@ void for_each_run_component(const std::vector<std::uint8_t>& mask, int width, in
   };
   const int reach = eight ? 1 : 0;  // 8-connectivity also joins runs touching at a corner
   for (int r = 1; r < height; ++r) {
-    std::size_t j = row_start[r - 1];
-    for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
-      while (j < row_start[r] && runs[j].end + reach <= runs[i].begin) ++j;
-      for (std::size_t k = j; k < row_start[r] && runs[k].begin < runs[i].end + reach; ++k) {
+    std::size_t j = out.row_start[r - 1];
+    for (std::size_t i = out.row_start[r]; i < out.row_start[r + 1]; ++i) {
+      while (j < out.row_start[r] && runs[j].end + reach <= runs[i].begin) ++j;
+      for (std::size_t k = j; k < out.row_start[r] && runs[k].begin < runs[i].end + reach; ++k) {
         const std::size_t a = find(i), b = find(k);
         if (a != b) parent[std::max(a, b)] = std::min(a, b);
       }
     }
   }
-  std::vector<std::vector<CellRun>> components(runs.size());
-  for (std::size_t i = 0; i < runs.size(); ++i) components[find(i)].push_back(runs[i]);
+  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = find(i);
+  return out;
+}
+
+/// Connected components of the cells with `mask == value`: calls `on_component(runs)` with each
+/// component's runs, components in the order of their first run.
+template <class OnComponent>
+void for_each_run_component(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value, bool eight,
+                            OnComponent&& on_component) {
+  const RunComponents rc = run_components(mask, width, height, value, eight);
+  std::vector<std::vector<CellRun>> components(rc.runs.size());
+  for (std::size_t i = 0; i < rc.runs.size(); ++i) components[rc.component[i]].push_back(rc.runs[i]);
   for (const auto& component : components)
     if (!component.empty()) on_component(component);
 }

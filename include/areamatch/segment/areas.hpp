@@ -13,6 +13,7 @@
 /// follow the cell boundaries exactly and are valid.
 
 #include "../area_graph.hpp"
+#include "../detail/run_components.hpp"
 #include "../error.hpp"
 #include "../geometry.hpp"
 #include "../grid.hpp"
@@ -164,89 +165,41 @@ inline long long signed_area2(const std::vector<Eigen::Vector2i>& ring) {
 }
 
 /// The first step of labelling, done on runs instead of cells. `label` holds only the seeds
-/// (listed in `seeds`); growth from them runs over the passable cells `core && !barrier`,
-/// 4-connected. A connected piece of passable cells that the seeds of just one region touch ends
-/// up wholly in that region, whatever the order of growth: such pieces are labelled here and
+/// (listed in `seeds`); growth from them runs over the cells of `core` (barrier cells already
+/// taken out), 4-connected. A connected piece of the core that the seeds of just one region touch
+/// ends up wholly in that region, whatever the order of growth: such pieces are labelled here and
 /// cleared from `core`. Pieces that seeds of several regions touch are left for the cell-by-cell
 /// growth, which decides their borders by distance exactly as before.
-inline void fill_uncontested_core(std::vector<std::uint8_t>& core, const std::vector<std::uint8_t>& barrier,
-                                  std::vector<int>& label, const std::vector<std::uint32_t>& seeds, int W, int H) {
-  struct Run {
-    int begin, end;
-  };
-  std::vector<Run> runs;
-  std::vector<std::size_t> row_start(static_cast<std::size_t>(H) + 1, 0);
-  for (int r = 0; r < H; ++r) {
-    row_start[r] = runs.size();
-    const std::uint8_t* c_row = &core[static_cast<std::size_t>(r) * W];
-    const std::uint8_t* b_row = &barrier[static_cast<std::size_t>(r) * W];
-    int c = 0;
-    while (c < W) {
-      while (c < W && !(c_row[c] && !b_row[c])) ++c;
-      if (c == W) break;
-      const int begin = c;
-      while (c < W && c_row[c] && !b_row[c]) ++c;
-      runs.push_back({begin, c});
-    }
-  }
-  row_start[H] = runs.size();
-  if (runs.empty()) return;
-  std::vector<int> parent(runs.size());
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
-  for (int r = 1; r < H; ++r) {
-    std::size_t j = row_start[r - 1];
-    for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
-      while (j < row_start[r] && runs[j].end <= runs[i].begin) ++j;
-      for (std::size_t k = j; k < row_start[r] && runs[k].begin < runs[i].end; ++k) {
-        const int x = find(static_cast<int>(k)), y = find(static_cast<int>(i));
-        if (x != y) parent[std::max(x, y)] = std::min(x, y);
-      }
-    }
-  }
-  // The run holding cell (r, c), or -1 when the cell is not passable.
-  auto run_at = [&](std::size_t cell) {
-    const int r = static_cast<int>(cell / W), c = static_cast<int>(cell % W);
-    const auto first = runs.begin() + static_cast<std::ptrdiff_t>(row_start[r]);
-    const auto last = runs.begin() + static_cast<std::ptrdiff_t>(row_start[r + 1]);
-    const auto it = std::upper_bound(first, last, c, [](int col, const Run& run) { return col < run.begin; });
-    if (it == first) return -1;
-    const auto& run = *(it - 1);
-    return c < run.end ? static_cast<int>(it - 1 - runs.begin()) : -1;
-  };
+inline void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<int>& label,
+                                  const std::vector<std::uint32_t>& seeds, int W, int H) {
+  const RunComponents pieces = run_components(core, W, H, 1, false);
   constexpr int unreached = -1, contested = -2;
-  std::vector<int> region_of_root(runs.size(), unreached);
-  auto touch = [&](int run, int region) {
-    if (run < 0) return;
-    int& slot = region_of_root[find(run)];
+  std::vector<int> region_of_piece(pieces.runs.size(), unreached);
+  auto touch = [&](std::size_t cell, int region) {
+    const std::size_t run = pieces.run_at(static_cast<int>(cell % W), static_cast<int>(cell / W));
+    if (run == RunComponents::none) return false;
+    int& slot = region_of_piece[pieces.component[run]];
     if (slot == unreached) slot = region;
     else if (slot != region) slot = contested;
+    return true;
   };
   for (std::uint32_t seed : seeds) {
     const int region = label[seed];
-    const int own = run_at(seed);
-    if (own >= 0) {
-      touch(own, region);
-      continue;
-    }
+    if (touch(seed, region)) continue;
     // A seed off the passable cells grows into every passable neighbour. Seeds are free cells
     // and the mask's border is obstacle, so all four neighbours exist.
     for (std::ptrdiff_t d : {std::ptrdiff_t{1}, std::ptrdiff_t{-1}, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)}) {
-      touch(run_at(static_cast<std::size_t>(static_cast<std::ptrdiff_t>(seed) + d)), region);
+      touch(static_cast<std::size_t>(static_cast<std::ptrdiff_t>(seed) + d), region);
     }
   }
-  for (int r = 0; r < H; ++r) {
-    for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
-      const int region = region_of_root[find(static_cast<int>(i))];
-      if (region < 0) continue;
-      const std::size_t from = static_cast<std::size_t>(r) * W + runs[i].begin;
-      const std::size_t to = static_cast<std::size_t>(r) * W + runs[i].end;
-      std::fill(label.begin() + static_cast<std::ptrdiff_t>(from), label.begin() + static_cast<std::ptrdiff_t>(to), region);
-      std::fill(core.begin() + static_cast<std::ptrdiff_t>(from), core.begin() + static_cast<std::ptrdiff_t>(to), std::uint8_t{0});
-    }
+  for (std::size_t i = 0; i < pieces.runs.size(); ++i) {
+    const int region = region_of_piece[pieces.component[i]];
+    if (region < 0) continue;
+    const CellRun& run = pieces.runs[i];
+    const auto from = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.begin);
+    const auto to = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.end);
+    std::fill(label.begin() + from, label.begin() + to, region);
+    std::fill(core.begin() + from, core.begin() + to, std::uint8_t{0});
   }
 }
 
@@ -300,7 +253,9 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     // Doors are sealed one cell beyond both walls; junction spokes start at the junction.
     const Eigen::Vector2d direction = (p.line_b - p.line_a).normalized();
     detail::supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
-      if (space.is_free(c, r)) barrier[static_cast<std::size_t>(r) * W + c] = 1;
+      if (!space.is_free(c, r)) return;
+      barrier[static_cast<std::size_t>(r) * W + c] = 1;
+      core[static_cast<std::size_t>(r) * W + c] = 0;  // growth never enters a barrier cell
     });
   }
 
@@ -339,7 +294,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   // Most core components are reached by one region only: those are filled run by run and taken
   // out of `core`, so the cell-by-cell growth only settles the contested ones — with the same
   // result, since growth never crosses from one component into another.
-  detail::fill_uncontested_core(core, barrier, label, queue, W, H);
+  detail::fill_uncontested_core(core, label, queue, W, H);
   grow(queue, false);
   queue.clear();
   // The fringe starts from labelled cells next to unlabelled free space.
