@@ -9,8 +9,8 @@
 /// thinner space (room corners, cracks). Laser streaks through windows and doors — free space too thin to pass that leads
 /// away from the building — stay outside every area; `AreaGraph::covered_fraction` says how much.
 /// Areas smaller than `min_area_m2` merge into the neighbour they share the longest border with.
-/// Polygons come from Boost.Polygon's rectilinear set operations on the labelled cells, so they
-/// follow the cell boundaries exactly and are valid.
+/// Polygons are traced along the labelled cells' sides (the same contour walk as the free-space
+/// boundary, `detail::RingTracer`), so they follow the cell boundaries exactly and are valid.
 
 #include "../area_graph.hpp"
 #include "../detail/run_components.hpp"
@@ -19,8 +19,6 @@
 #include "../grid.hpp"
 #include "binarize.hpp"
 #include "rooms.hpp"
-
-#include <boost/polygon/polygon.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -132,24 +130,28 @@ inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mas
 }
 
 /// Splits a closed lattice ring (first vertex not repeated) wherever it passes through the same
-/// vertex twice. Boost.Polygon returns such "pinched" rings where a hole touches the outside at a
-/// corner; Boost.Geometry rejects them, but accepts the loops as separate rings.
-inline std::vector<std::vector<Eigen::Vector2i>> split_pinched_ring(std::vector<Eigen::Vector2i> ring) {
+/// vertex twice, into simple loops. A ring does that only at vertices where its region's cells
+/// touch diagonally, flagged in `pinned`; Boost.Geometry rejects such self-touching rings but
+/// accepts their loops as separate rings. Walking the ring, each return to a vertex still on the
+/// walk closes the loop since its first visit, which is cut out.
+inline std::vector<std::vector<Eigen::Vector2i>> split_pinched_ring(const std::vector<Eigen::Vector2i>& ring,
+                                                                     const std::vector<bool>& pinned) {
   std::vector<std::vector<Eigen::Vector2i>> loops;
-  bool split = true;
-  while (split) {
-    split = false;
-    std::map<std::pair<int, int>, std::size_t> seen;
-    for (std::size_t i = 0; i < ring.size() && !split; ++i) {
-      const auto [it, inserted] = seen.insert({{ring[i].x(), ring[i].y()}, i});
-      if (inserted) continue;
-      // ring[it->second .. i) is a closed loop through the repeated vertex: cut it out.
-      loops.emplace_back(ring.begin() + static_cast<std::ptrdiff_t>(it->second), ring.begin() + static_cast<std::ptrdiff_t>(i));
-      ring.erase(ring.begin() + static_cast<std::ptrdiff_t>(it->second), ring.begin() + static_cast<std::ptrdiff_t>(i));
-      split = true;
+  std::vector<Eigen::Vector2i> walk;
+  std::map<std::pair<int, int>, std::size_t> on_walk;  // pinned vertex → its index in `walk`
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    if (pinned[i]) {
+      const auto [it, inserted] = on_walk.insert({{ring[i].x(), ring[i].y()}, walk.size()});
+      if (!inserted) {
+        const std::size_t first = it->second;
+        for (std::size_t k = first + 1; k < walk.size(); ++k) on_walk.erase({walk[k].x(), walk[k].y()});
+        loops.emplace_back(walk.begin() + static_cast<std::ptrdiff_t>(first), walk.end());
+        walk.resize(first);
+      }
     }
+    walk.push_back(ring[i]);
   }
-  loops.push_back(std::move(ring));
+  loops.push_back(std::move(walk));
   return loops;
 }
 
@@ -474,63 +476,62 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       if (v > most) area_of_region[r] = a, most = v;
   }
 
-  // Areas: polygons from the labelled runs, and their measures.
+  // Areas: polygons traced on the final labels (one walk over every area's boundary at once),
+  // and their measures.
   graph.areas.resize(area_count);
-  {
-    std::vector<std::vector<boost::polygon::rectangle_data<int>>> area_runs(area_count);
-    for (const auto& run : runs)
-      if (run.label >= 0) area_runs[run.label].emplace_back(run.begin, run.row, run.end, run.row + 1);
-    for (int a = 0; a < area_count; ++a) {
-      Area& area = graph.areas[a];
-      area.id = a;
-      area.size_m2 = 0.0;
-      boost::polygon::polygon_90_set_data<int> cells;
-      for (const auto& run : area_runs[a]) {
-        cells.insert(run);
-        area.size_m2 += (boost::polygon::xh(run) - boost::polygon::xl(run)) * res * res;
-      }
-      std::vector<boost::polygon::polygon_90_with_holes_data<int>> polygons;
-      cells.get(polygons);
-      auto lattice_ring = [](auto begin, auto end) {
-        std::vector<Eigen::Vector2i> ring;
-        for (auto it = begin; it != end; ++it) ring.emplace_back((*it).x(), (*it).y());
-        return ring;
-      };
-      auto world_ring = [&](const std::vector<Eigen::Vector2i>& lattice) {
-        bg::model::ring<Point2> ring;
-        for (const auto& v : lattice) {
-          const Eigen::Vector2d w = to_world(v.cast<double>());
-          ring.push_back({w.x(), w.y()});
-        }
-        if (!ring.empty()) ring.push_back(ring.front());
-        return ring;
-      };
-      double best = -1.0;
-      for (const auto& p : polygons) {
-        // The outer ring's largest loop is the outline; loops turning the other way are holes
-        // touching it at a corner (loops turning the same way would be separate parts, which a
-        // 4-connected area does not have).
-        auto loops = detail::split_pinched_ring(lattice_ring(p.begin(), p.end()));
-        std::sort(loops.begin(), loops.end(), [](const auto& x, const auto& y) {
-          return std::llabs(detail::signed_area2(x)) > std::llabs(detail::signed_area2(y));
-        });
-        const bool outline_positive = detail::signed_area2(loops.front()) > 0;
-        Polygon2 polygon;
-        polygon.outer() = world_ring(loops.front());
-        for (std::size_t k = 1; k < loops.size(); ++k)
-          if ((detail::signed_area2(loops[k]) > 0) != outline_positive) polygon.inners().push_back(world_ring(loops[k]));
-        for (auto h = p.begin_holes(); h != p.end_holes(); ++h)
-          for (const auto& loop : detail::split_pinched_ring(lattice_ring(h->begin(), h->end())))
-            polygon.inners().push_back(world_ring(loop));
-        bg::correct(polygon);
-        const double size = bg::area(polygon);
-        if (size > best) best = size, area.polygon = std::move(polygon);
-      }
-      bg::convex_hull(area.polygon, area.convex_hull);
-      Point2 centroid(0.0, 0.0);
-      bg::centroid(area.polygon, centroid);
-      area.centroid = to_vector(centroid);
+  // The runs cover exactly the labelled cells: rewriting them leaves the final labels.
+  for (const auto& run : runs) {
+    const auto row = static_cast<std::ptrdiff_t>(run.row) * W;
+    std::fill(label.begin() + row + run.begin, label.begin() + row + run.end, run.label);
+    if (run.label >= 0) graph.areas[run.label].size_m2 += (run.end - run.begin) * res * res;
+  }
+  std::vector<std::vector<std::vector<Eigen::Vector2i>>> loops_of_area(area_count);
+  auto keep_loops = [&](int a, const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned) {
+    std::vector<Eigen::Vector2i> corners;
+    corners.reserve(ring.size());
+    for (const auto& v : ring) corners.emplace_back(v.x, v.y);
+    if (std::find(pinned.begin(), pinned.end(), true) == pinned.end()) {
+      loops_of_area[a].push_back(std::move(corners));
+      return;
     }
+    for (auto& loop : detail::split_pinched_ring(corners, pinned)) loops_of_area[a].push_back(std::move(loop));
+  };
+  // Every ring has vertical sides, and those lie at the ends of runs: start only there.
+  detail::RingTracer tracer(W, H, [&](int c, int r) { return label[static_cast<std::size_t>(r) * W + c]; });
+  for (const auto& run : runs) {
+    tracer.trace_from(run.begin, run.row, 1, keep_loops);
+    tracer.trace_from(run.end - 1, run.row, 3, keep_loops);
+  }
+  auto world_ring = [&](const std::vector<Eigen::Vector2i>& lattice) {
+    bg::model::ring<Point2> ring;
+    for (const auto& v : lattice) {
+      const Eigen::Vector2d w = to_world(v.cast<double>());
+      ring.push_back({w.x(), w.y()});
+    }
+    if (!ring.empty()) ring.push_back(ring.front());
+    return ring;
+  };
+  for (int a = 0; a < area_count; ++a) {
+    Area& area = graph.areas[a];
+    area.id = a;
+    // An area is 4-connected: its largest loop is the outline, and the loops turning the other
+    // way are its holes (some touching the outline at a corner).
+    auto& loops = loops_of_area[a];
+    std::vector<long long> area2;
+    for (const auto& loop : loops) area2.push_back(detail::signed_area2(loop));
+    std::size_t outline = 0;
+    for (std::size_t k = 1; k < loops.size(); ++k)
+      if (std::llabs(area2[k]) > std::llabs(area2[outline])) outline = k;
+    Polygon2 polygon;
+    polygon.outer() = world_ring(loops[outline]);
+    for (std::size_t k = 0; k < loops.size(); ++k)
+      if ((area2[k] > 0) != (area2[outline] > 0)) polygon.inners().push_back(world_ring(loops[k]));
+    bg::correct(polygon);
+    area.polygon = std::move(polygon);
+    bg::convex_hull(area.polygon, area.convex_hull);
+    Point2 centroid(0.0, 0.0);
+    bg::centroid(area.polygon, centroid);
+    area.centroid = to_vector(centroid);
   }
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];

@@ -77,62 +77,90 @@ struct TracedRings {
   std::vector<std::vector<bool>> pinned;
 };
 
+/// Contour following on cell sides of a labelled lattice: traces the closed boundaries
+/// (outlines and holes) of the 4-connected regions of equal label ≥ 0. `label_at(c, r)` gives a
+/// cell's label (< 0: none); labelled cells must not lie on the lattice's border, so their
+/// neighbours are inside it. Corners are listed with the region on the left (outlines clockwise
+/// on screen, holes counter-clockwise); `pinned` marks vertices where the region's cells touch
+/// only diagonally, which the walk keeps apart (a ring bounding both cells passes there twice).
+template <class LabelAt>
+class RingTracer {
+ public:
+  RingTracer(int W, int H, LabelAt label_at)
+      : W_(W), label_at_(std::move(label_at)), visited_(static_cast<std::size_t>(std::max(W, 0)) * std::max(H, 0), 0) {}
+
+  /// Traces the ring running along side k (0 top, 1 left, 2 bottom, 3 right) of cell (c, r) and
+  /// calls `on_ring(label, corners, pinned)`, unless that side is no boundary or already traced.
+  template <class OnRing>
+  void trace_from(int c0, int r0, int k0, OnRing&& on_ring) {
+    const int label = label_at_(c0, r0);
+    if (label < 0) return;
+    auto inside = [&](int c, int r) { return label_at_(c, r) == label; };
+    // Side k is walked with the cell on the left (top westwards, left southwards, …); its travel
+    // direction is the outward normal of side k + 1.
+    static const int nx[4] = {0, -1, 0, 1}, ny[4] = {-1, 0, 1, 0};   // outward normals
+    static const int sx[4] = {1, 0, 0, 1}, sy[4] = {0, 0, 1, 1};     // start vertex offsets
+    auto boundary_side = [&](int c, int r, int k) { return !inside(c + nx[k], r + ny[k]); };
+    auto seen = [&](int c, int r, int k) { return visited_[static_cast<std::size_t>(r) * W_ + c] >> k & 1; };
+    if (!boundary_side(c0, r0, k0) || seen(c0, r0, k0)) return;
+    auto is_pinch = [&](int x, int y) {
+      const bool tl = inside(x - 1, y - 1), tr = inside(x, y - 1), bl = inside(x - 1, y), br = inside(x, y);
+      return tl == br && tr == bl && tl != tr;
+    };
+    ring_.clear();
+    pinned_.clear();
+    int c = c0, r = r0, k = k0, previous = -1;
+    while (!seen(c, r, k)) {
+      visited_[static_cast<std::size_t>(r) * W_ + c] |= static_cast<std::uint8_t>(1 << k);
+      if (k != previous) {  // a corner: the walk changes direction here
+        const int x = c + sx[k], y = r + sy[k];
+        ring_.push_back({x, y});
+        pinned_.push_back(is_pinch(x, y));
+      }
+      previous = k;
+      const int next = (k + 1) & 3;
+      const int ahead_c = c + nx[next], ahead_r = r + ny[next];
+      if (boundary_side(c, r, next)) {
+        k = next;  // turn around this cell (at a pinch this keeps diagonal cells apart)
+      } else if (inside(ahead_c + nx[k], ahead_r + ny[k])) {
+        c = ahead_c + nx[k];  // turn the other way, onto the diagonal cell
+        r = ahead_r + ny[k];
+        k = (k + 3) & 3;
+      } else {
+        c = ahead_c;  // straight on along the next cell's same side
+        r = ahead_r;
+      }
+    }
+    // The first vertex is a corner only if the walk turns there.
+    if (ring_.size() > 1 && previous == k0) {
+      ring_.erase(ring_.begin());
+      pinned_.erase(pinned_.begin());
+    }
+    on_ring(label, ring_, pinned_);
+  }
+
+ private:
+  int W_;
+  LabelAt label_at_;
+  std::vector<std::uint8_t> visited_;  ///< per cell, a bit per traced side
+  std::vector<LatticePoint> ring_;
+  std::vector<bool> pinned_;
+};
+
 inline TracedRings trace_rings(const FreeSpace& space) {
-  // Contour following on cell sides. Side k of a free cell: 0 top, 1 left, 2 bottom, 3 right,
-  // walked with the cell on the left (top westwards, left southwards, …). Travel direction of
-  // side k is the outward normal of side k + 1.
-  static const int nx[4] = {0, -1, 0, 1}, ny[4] = {-1, 0, 1, 0};   // outward normals
-  static const int sx[4] = {1, 0, 0, 1}, sy[4] = {0, 0, 1, 1};     // start vertex offsets
   const int W = space.width, H = space.height;
   TracedRings traced;
-  if (W == 0 || H == 0) return traced;
-  auto free_at = [&](int c, int r) { return space.is_free(c, r); };
-  auto boundary_side = [&](int c, int r, int k) { return !free_at(c + nx[k], r + ny[k]); };
-  auto is_pinch = [&](int x, int y) {  // vertex (x, y) where free cells touch only diagonally
-    const bool tl = free_at(x - 1, y - 1), tr = free_at(x, y - 1), bl = free_at(x - 1, y), br = free_at(x, y);
-    return tl == br && tr == bl && tl != tr;
+  RingTracer tracer(W, H, [&](int c, int r) { return space.free[static_cast<std::size_t>(r) * W + c] ? 0 : -1; });
+  auto keep = [&](int, const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned) {
+    traced.rings.push_back(ring);
+    traced.pinned.push_back(pinned);
   };
-  std::vector<std::uint8_t> visited(static_cast<std::size_t>(W) * H, 0);
-  for (int r0 = 0; r0 < H; ++r0) {
-    for (int c0 = 0; c0 < W; ++c0) {
-      const std::size_t i = static_cast<std::size_t>(r0) * W + c0;
-      if (!space.free[i]) continue;
+  for (int r = 0; r < H; ++r) {
+    for (int c = 0; c < W; ++c) {
+      const std::size_t i = static_cast<std::size_t>(r) * W + c;
       // Free cells never lie on the mask's border, so the four neighbours are inside it.
-      if (space.free[i - 1] && space.free[i + 1] && space.free[i - W] && space.free[i + W]) continue;
-      for (int k0 = 0; k0 < 4; ++k0) {
-        if (!boundary_side(c0, r0, k0) || (visited[static_cast<std::size_t>(r0) * W + c0] >> k0 & 1)) continue;
-        std::vector<LatticePoint> ring;
-        std::vector<bool> pinned;
-        int c = c0, r = r0, k = k0, previous = -1;
-        while (!(visited[static_cast<std::size_t>(r) * W + c] >> k & 1)) {
-          visited[static_cast<std::size_t>(r) * W + c] |= static_cast<std::uint8_t>(1 << k);
-          if (k != previous) {  // a corner: the walk changes direction here
-            const int x = c + sx[k], y = r + sy[k];
-            ring.push_back({x, y});
-            pinned.push_back(is_pinch(x, y));
-          }
-          previous = k;
-          const int next = (k + 1) & 3;
-          const int ahead_c = c + nx[next], ahead_r = r + ny[next];
-          if (boundary_side(c, r, next)) {
-            k = next;  // turn around this cell (at a pinch this keeps diagonal cells apart)
-          } else if (free_at(ahead_c + nx[k], ahead_r + ny[k])) {
-            c = ahead_c + nx[k];  // turn the other way, onto the diagonal cell
-            r = ahead_r + ny[k];
-            k = (k + 3) & 3;
-          } else {
-            c = ahead_c;  // straight on along the next cell's same side
-            r = ahead_r;
-          }
-        }
-        // The first vertex is a corner only if the walk turns there.
-        if (ring.size() > 1 && previous == k0) {
-          ring.erase(ring.begin());
-          pinned.erase(pinned.begin());
-        }
-        traced.rings.push_back(std::move(ring));
-        traced.pinned.push_back(std::move(pinned));
-      }
+      if (!space.free[i] || (space.free[i - 1] && space.free[i + 1] && space.free[i - W] && space.free[i + W])) continue;
+      for (int k = 0; k < 4; ++k) tracer.trace_from(c, r, k, keep);
     }
   }
   return traced;
