@@ -106,6 +106,10 @@ TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
   const Run speckle = run("segment " + dir + "/layout.yaml --speckle-size -1");
   CHECK(speckle.status == 2);
   CHECK(speckle.out.find("--speckle-size must not be negative") != std::string::npos);
+  REQUIRE(run("segment " + dir + "/layout.yaml --min-traced-width 0.1").status == 0);
+  const Run traced = run("segment " + dir + "/layout.yaml --min-traced-width -1");
+  CHECK(traced.status == 2);
+  CHECK(traced.out.find("--min-traced-width must not be negative") != std::string::npos);
 }
 
 TEST_CASE("bad input: exit status 2 and a message naming the problem") {

@@ -187,6 +187,62 @@ TEST_CASE("speckles: small blobs go by area, and by size with max_speckle_size_m
   CHECK_THROWS_AS(binarize(g, by_size), parameter_error);
 }
 
+TEST_CASE("open_free_space is the opening by a disc, on its fast path and its general one") {
+  detail::Random random(77);
+  for (int trial = 0; trial < 20; ++trial) {
+    FreeSpace space;
+    space.width = random.integer(3, 40);
+    space.height = random.integer(3, 40);
+    space.free.assign(static_cast<std::size_t>(space.width) * space.height, 0);
+    for (int r = 1; r + 1 < space.height; ++r)  // free cells never on the border
+      for (int c = 1; c + 1 < space.width; ++c) space.free[static_cast<std::size_t>(r) * space.width + c] = random.chance(0.8);
+    for (double radius : {0.5, 1.0, 1.2, 1.5, 2.3}) {
+      // By definition: a disc centred on a cell fits when every cell within `radius` of it
+      // (centre to centre) is free; the opening keeps the free cells some fitting disc covers.
+      const int reach = static_cast<int>(std::ceil(radius));
+      auto within = [&](int dc, int dr) { return dc * dc + dr * dr <= radius * radius; };
+      auto fits = [&](int c, int r) {
+        for (int dr = -reach; dr <= reach; ++dr)
+          for (int dc = -reach; dc <= reach; ++dc)
+            if (within(dc, dr) && !space.is_free(c + dc, r + dr)) return false;
+        return true;
+      };
+      const FreeSpace opened = open_free_space(space, radius);
+      for (int r = 0; r < space.height; ++r)
+        for (int c = 0; c < space.width; ++c) {
+          bool covered = false;
+          for (int dr = -reach; dr <= reach && !covered; ++dr)
+            for (int dc = -reach; dc <= reach && !covered; ++dc) covered = within(dc, dr) && fits(c + dc, r + dr);
+          INFO("trial " << trial << " radius " << radius << " cell " << c << "," << r);
+          CHECK(opened.is_free(c, r) == (space.is_free(c, r) && covered));
+        }
+    }
+  }
+}
+
+TEST_CASE("min_traced_width_m keeps laser streaks out of the Voronoi input, not out of the map") {
+  // A 4 x 3 m room (0.05 m cells) with a door-free wall pierced by thin streaks into the unknown.
+  std::vector<std::string> rows(70, std::string(100, '?'));
+  for (int r = 5; r < 67; ++r) rows[r].replace(5, 82, "#" + std::string(80, '.') + "#");
+  rows[5].replace(5, 82, std::string(82, '#'));
+  rows[66].replace(5, 82, std::string(82, '#'));
+  for (int k = 0; k < 8; ++k) {  // one-cell streaks out through the right wall, 10 to 17 cells long
+    const int r = 10 + 6 * k;
+    for (int c = 86; c < 87 + 10 + k; ++c) rows[r][c] = '.';
+  }
+  const OccupancyGrid g = grid_from_text(rows, 0.05);
+  VoronoiSegmenter plain, filtered;
+  filtered.params.boundary.min_traced_width_m = 0.1;
+  const auto a = plain.segment_with_details(g), b = filtered.segment_with_details(g);
+  CHECK(b.boundary_segments < a.boundary_segments);
+  REQUIRE(a.graph.areas.size() == 1);
+  REQUIRE(b.graph.areas.size() == 1);
+  CHECK(b.graph.areas[0].size_m2 == doctest::Approx(a.graph.areas[0].size_m2).epsilon(0.01));
+  check_graph_invariants(b.graph);
+  filtered.params.boundary.min_traced_width_m = -0.1;
+  CHECK_THROWS_AS(filtered.segment(g), parameter_error);
+}
+
 TEST_CASE("a door exactly as wide as the door width is a passage") {
   // The door width is the widest opening that still separates: drawn at exactly W on the grid,
   // a door measures up to one cell more, which the parameter's slack absorbs.

@@ -239,6 +239,7 @@ const char* kSegmentHelp =
     "  --simplify M       how far simplified walls may stray from the pixel boundary (default 0.1 m)\n"
     "  --speckle-area M2  obstacle blobs up to this area are erased (default 0.05 m^2)\n"
     "  --speckle-size M   obstacle blobs that fit in an M x M box are erased too (default 0: off)\n"
+    "  --min-traced-width M  free space no wider than this (laser streaks) is not traced (default 0)\n"
     "  --png OUT.png      picture: areas in colours, passages as lines with a dot sized by width\n"
     "  --svg OUT.svg      the same as SVG (passages as vectors)\n"
     "  --show-skeleton    draw the Voronoi skeleton in the pictures\n"
@@ -253,6 +254,7 @@ areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& 
   if (const auto tolerance = args.number("simplify", false, true)) segmenter.params.boundary.simplify_tolerance_m = *tolerance;
   if (const auto speckle = args.number("speckle-area", false, true)) segmenter.params.binarize.max_speckle_area_m2 = *speckle;
   if (const auto size = args.number("speckle-size", false, true)) segmenter.params.binarize.max_speckle_size_m = *size;
+  if (const auto width = args.number("min-traced-width", false, true)) segmenter.params.boundary.min_traced_width_m = *width;
   return segmenter;
 }
 
@@ -265,7 +267,7 @@ areamatch::GreyImage label_image(const areamatch::AreaGraph& graph) {
 }
 
 int run_segment(const std::vector<std::string>& tokens) {
-  const Args args(tokens, merged(kMapFlags, {"show-skeleton"}), merged(kMapOptions, {"door-width", "min-area", "room-margin", "simplify", "speckle-area", "speckle-size", "png", "svg", "labels", "json"}));
+  const Args args(tokens, merged(kMapFlags, {"show-skeleton"}), merged(kMapOptions, {"door-width", "min-area", "room-margin", "simplify", "speckle-area", "speckle-size", "min-traced-width", "png", "svg", "labels", "json"}));
   if (args.flag("help")) {
     std::cout << kSegmentHelp << kMapOptionsHelp;
     return 0;

@@ -45,19 +45,22 @@ struct BoundaryParams {
   /// Douglas–Peucker tolerance: how far a simplified wall may stray from the pixel boundary.
   /// 0 keeps every corner (exact staircases); larger values give far fewer Voronoi sites.
   double simplify_tolerance_m = 0.1;
-  /// Trace only the free space that a disc of the skeleton's `min_clearance_m` can reach (its
-  /// morphological opening): laser streaks and slivers too thin for the skeleton stop feeding
-  /// the Voronoi builder. Much faster on streaky SLAM maps (lab_b: 5720 → 749 segments), but the
-  /// opening also loses narrow doors next to thin features (SLAM→layout consistency 0.527 →
-  /// 0.461 on shared/pairs.json), so it is off by default.
-  bool trace_passable_only = false;
+  /// Free space no wider than this is left out of the Voronoi input (traced from the free
+  /// space's morphological opening by a disc of half this width): laser streaks through windows
+  /// and slivers between scan rays are far too thin for the skeleton (it needs 2·min_clearance)
+  /// but each adds walls to the diagram. The areas still cover the whole free space. 0 traces
+  /// every free cell. TUNING
+  double min_traced_width_m = 0.0;
   /// Most Voronoi input segments accepted; beyond, segmenting throws `limit_error` instead of
   /// running for minutes. Boost.Polygon's builder costs about 56 000 instructions per segment
   /// (so ~5 s at the limit on the CI machine); the shared maps need at most 5720, a 100 m
   /// synthetic robot map with noise 27 836.
   std::size_t max_segments = 250'000;
 
-  void validate() const { detail::require_non_negative(simplify_tolerance_m, "BoundaryParams::simplify_tolerance_m"); }
+  void validate() const {
+    detail::require_non_negative(simplify_tolerance_m, "BoundaryParams::simplify_tolerance_m");
+    detail::require_non_negative(min_traced_width_m, "BoundaryParams::min_traced_width_m");
+  }
 };
 
 /// The obstacle boundary as lattice segments, valid Boost.Polygon Voronoi input.

@@ -93,10 +93,10 @@ struct VoronoiSegmenter {
     const double res = grid.resolution();
     const auto t0 = clock::now();
     const FreeSpace space = binarize(grid, params.binarize);
-    // Optionally trace only the free space a disc of min_clearance can reach (see
-    // BoundaryParams::trace_passable_only); the areas still cover the whole free space.
-    const FreeSpace passable = params.boundary.trace_passable_only
-                                   ? open_free_space(space, params.skeleton.min_clearance_m / res + 0.5)
+    // Free space too thin to matter is not traced (BoundaryParams::min_traced_width_m); the
+    // areas still cover the whole free space.
+    const FreeSpace passable = params.boundary.min_traced_width_m > 0.0
+                                   ? open_free_space(space, 0.5 * params.boundary.min_traced_width_m / res)
                                    : space;
     const auto t1 = clock::now();
     const BoundarySegments boundary = trace_boundary(passable, res, params.boundary);
