@@ -1,0 +1,75 @@
+#!/usr/bin/env python3
+"""How high cross-modal consistency can go when the source map does not cover the destination.
+
+consistency.py counts a destination area as consistent when some source area, carried over by
+the ground truth, overlaps it with IoU >= 0.5. That needs at least half of the destination area
+to be covered by labelled source space: rooms the robot never entered, or only glimpsed through
+a door, cannot count whatever the segmentation does. For each pair of a manifest this segments
+both maps with `areamatch segment` and reports the consistency next to that ceiling (the share
+of destination areas >= 0.5 m^2 at least half covered by any source area).
+
+usage: scripts/consistency_bound.py [MANIFEST] [--areamatch PATH] [--kind KIND] [-- SEGMENT OPTIONS]
+needs python3-opencv and python3-numpy (as ../shared/tools/consistency.py does).
+"""
+import argparse
+import json
+import os
+import subprocess
+import sys
+import tempfile
+
+import cv2
+import numpy as np
+
+
+def labels_of(areamatch, path, out_png, extra):
+    subprocess.run([areamatch, "segment", path, "--labels", out_png] + extra, check=False, capture_output=True)
+    image = cv2.imread(out_png, cv2.IMREAD_UNCHANGED)
+    if image is None:
+        return None
+    return image[:, :, 0] if image.ndim == 3 else image
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
+    parser.add_argument("manifest", nargs="?", default=os.path.join("..", "shared", "pairs.json"))
+    parser.add_argument("--areamatch", default=os.path.join("build", "tools", "areamatch"))
+    parser.add_argument("--kind", default="slam_to_layout", help="pairs of this kind only ('' for all)")
+    args, extra = parser.parse_known_args()
+    extra = [e for e in extra if e != "--"]
+    with open(args.manifest) as f:
+        manifest = json.load(f)
+    root = os.path.dirname(os.path.abspath(args.manifest))
+    print("%-36s %11s %8s %10s" % ("pair", "consistency", "ceiling", "dst_areas"))
+    with tempfile.TemporaryDirectory() as tmp:
+        for pair in manifest["pairs"]:
+            if args.kind and pair.get("kind") != args.kind:
+                continue
+            src = labels_of(args.areamatch, os.path.join(root, pair["source"]), os.path.join(tmp, "s.png"), extra)
+            dst = labels_of(args.areamatch, os.path.join(root, pair["destination"]), os.path.join(tmp, "d.png"), extra)
+            if src is None or dst is None:
+                print("%-36s segmentation failed" % pair["name"])
+                continue
+            G = np.array(pair["ground_truth"]["pixel_transform"], float)
+            warped = cv2.warpAffine(src.astype(np.float32), G, (dst.shape[1], dst.shape[0]), flags=cv2.INTER_NEAREST,
+                                    borderValue=0).astype(np.int64)
+            warped_size = dict(zip(*np.unique(warped, return_counts=True)))
+            count = hits = coverable = 0
+            for value in np.unique(dst):
+                if value == 0:
+                    continue
+                mask = dst == value
+                size = int(mask.sum())
+                if size < 200:  # 0.5 m^2 at 5 cm, as consistency.py
+                    continue
+                count += 1
+                values, overlap = np.unique(warped[mask], return_counts=True)
+                best = max((c / (size + warped_size[v] - c) for v, c in zip(values, overlap) if v != 0), default=0.0)
+                hits += best >= 0.5
+                coverable += (warped[mask] > 0).mean() >= 0.5
+            if count:
+                print("%-36s %11.3f %8.3f %10d" % (pair["name"], hits / count, coverable / count, count))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
