@@ -222,13 +222,13 @@ TEST_CASE("open_free_space is the opening by a disc, on its fast path and its ge
 
 TEST_CASE("min_traced_width_m keeps laser streaks out of the Voronoi input, not out of the map") {
   // A 4 x 3 m room (0.05 m cells) with a door-free wall pierced by thin streaks into the unknown.
-  std::vector<std::string> rows(70, std::string(100, '?'));
+  std::vector<std::string> rows(70, std::string(120, '?'));
   for (int r = 5; r < 67; ++r) rows[r].replace(5, 82, "#" + std::string(80, '.') + "#");
   rows[5].replace(5, 82, std::string(82, '#'));
   rows[66].replace(5, 82, std::string(82, '#'));
   for (int k = 0; k < 8; ++k) {  // one-cell streaks out through the right wall, 10 to 17 cells long
     const int r = 10 + 6 * k;
-    for (int c = 86; c < 87 + 10 + k; ++c) rows[r][c] = '.';
+    for (int c = 86; c < 87 + 10 + k; ++c) rows.at(r).at(c) = '.';
   }
   const OccupancyGrid g = grid_from_text(rows, 0.05);
   VoronoiSegmenter plain, filtered;
