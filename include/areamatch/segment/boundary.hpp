@@ -46,10 +46,11 @@ struct BoundaryParams {
   /// 0 keeps every corner (exact staircases); larger values give far fewer Voronoi sites.
   double simplify_tolerance_m = 0.1;
   /// Free space no wider than this is left out of the Voronoi input (traced from the free
-  /// space's morphological opening by a disc of half this width): laser streaks through windows
+  /// space's morphological opening by a disc of this diameter): laser streaks through windows
   /// and slivers between scan rays are far too thin for the skeleton (it needs 2·min_clearance)
-  /// but each adds walls to the diagram. The areas still cover the whole free space. 0 traces
-  /// every free cell. TUNING
+  /// but each adds walls to the diagram. The areas still cover the whole free space. 0 (the
+  /// default) traces every free cell: 0.1 halves lab_b's Voronoi input, but tipped one of its
+  /// matches (docs/performance.md).
   double min_traced_width_m = 0.0;
   /// Most Voronoi input segments accepted; beyond, segmenting throws `limit_error` instead of
   /// running for minutes. Boost.Polygon's builder costs about 56 000 instructions per segment
@@ -83,8 +84,8 @@ struct TracedRings {
 /// Contour following on cell sides of a labelled lattice: traces the closed boundaries
 /// (outlines and holes) of the 4-connected regions of equal label ≥ 0. `label_at(c, r)` gives a
 /// cell's label (< 0: none); labelled cells must not lie on the lattice's border, so their
-/// neighbours are inside it. Corners are listed with the region on the left (outlines clockwise
-/// on screen, holes counter-clockwise); `pinned` marks vertices where the region's cells touch
+/// neighbours are inside it. Corners are listed with the region on the left (outlines
+/// counter-clockwise on screen, y down; holes clockwise); `pinned` marks vertices where the region's cells touch
 /// only diagonally, which the walk keeps apart (a ring bounding both cells passes there twice).
 template <class LabelAt>
 class RingTracer {
