@@ -131,20 +131,25 @@ inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mas
 
 /// Splits a closed lattice ring (first vertex not repeated) wherever it passes through the same
 /// vertex twice, into simple loops. A ring does that only at vertices where its region's cells
-/// touch diagonally, flagged in `pinned`; Boost.Geometry rejects such self-touching rings but
-/// accepts their loops as separate rings. Walking the ring, each return to a vertex still on the
-/// walk closes the loop since its first visit, which is cut out.
-inline std::vector<std::vector<Eigen::Vector2i>> split_pinched_ring(const std::vector<Eigen::Vector2i>& ring,
-                                                                     const std::vector<bool>& pinned) {
-  std::vector<std::vector<Eigen::Vector2i>> loops;
-  std::vector<Eigen::Vector2i> walk;
+/// touch diagonally, flagged in `pinned` (most rings have none and come back whole);
+/// Boost.Geometry rejects such self-touching rings but accepts their loops as separate rings.
+/// Walking the ring, each return to a vertex still on the walk closes the loop since its first
+/// visit, which is cut out.
+inline std::vector<std::vector<LatticePoint>> split_pinched_ring(std::vector<LatticePoint> ring,
+                                                                 const std::vector<bool>& pinned) {
+  std::vector<std::vector<LatticePoint>> loops;
+  if (std::find(pinned.begin(), pinned.end(), true) == pinned.end()) {
+    loops.push_back(std::move(ring));
+    return loops;
+  }
+  std::vector<LatticePoint> walk;
   std::map<std::pair<int, int>, std::size_t> on_walk;  // pinned vertex → its index in `walk`
   for (std::size_t i = 0; i < ring.size(); ++i) {
     if (pinned[i]) {
-      const auto [it, inserted] = on_walk.insert({{ring[i].x(), ring[i].y()}, walk.size()});
+      const auto [it, inserted] = on_walk.insert({{ring[i].x, ring[i].y}, walk.size()});
       if (!inserted) {
         const std::size_t first = it->second;
-        for (std::size_t k = first + 1; k < walk.size(); ++k) on_walk.erase({walk[k].x(), walk[k].y()});
+        for (std::size_t k = first + 1; k < walk.size(); ++k) on_walk.erase({walk[k].x, walk[k].y});
         loops.emplace_back(walk.begin() + static_cast<std::ptrdiff_t>(first), walk.end());
         walk.resize(first);
       }
@@ -156,12 +161,12 @@ inline std::vector<std::vector<Eigen::Vector2i>> split_pinched_ring(const std::v
 }
 
 /// Twice the signed area of a lattice ring.
-inline long long signed_area2(const std::vector<Eigen::Vector2i>& ring) {
+inline long long signed_area2(const std::vector<LatticePoint>& ring) {
   long long sum = 0;
   for (std::size_t i = 0; i < ring.size(); ++i) {
     const auto& a = ring[i];
     const auto& b = ring[(i + 1) % ring.size()];
-    sum += static_cast<long long>(a.x()) * b.y() - static_cast<long long>(b.x()) * a.y();
+    sum += static_cast<long long>(a.x) * b.y - static_cast<long long>(b.x) * a.y;
   }
   return sum;
 }
@@ -521,16 +526,9 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     std::fill(label.begin() + row + run.begin, label.begin() + row + run.end, run.label);
     if (run.label >= 0) graph.areas[run.label].size_m2 += (run.end - run.begin) * res * res;
   }
-  std::vector<std::vector<std::vector<Eigen::Vector2i>>> loops_of_area(area_count);
+  std::vector<std::vector<std::vector<LatticePoint>>> loops_of_area(area_count);
   auto keep_loops = [&](int a, const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned) {
-    std::vector<Eigen::Vector2i> corners;
-    corners.reserve(ring.size());
-    for (const auto& v : ring) corners.emplace_back(v.x, v.y);
-    if (std::find(pinned.begin(), pinned.end(), true) == pinned.end()) {
-      loops_of_area[a].push_back(std::move(corners));
-      return;
-    }
-    for (auto& loop : detail::split_pinched_ring(corners, pinned)) loops_of_area[a].push_back(std::move(loop));
+    for (auto& loop : detail::split_pinched_ring(ring, pinned)) loops_of_area[a].push_back(std::move(loop));
   };
   // Every ring has vertical sides, and those lie at the ends of runs: start only there.
   detail::RingTracer tracer(W, H, [&](int c, int r) { return label[static_cast<std::size_t>(r) * W + c]; });
@@ -538,10 +536,10 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     tracer.trace_from(run.begin, run.row, 1, keep_loops);
     tracer.trace_from(run.end - 1, run.row, 3, keep_loops);
   }
-  auto world_ring = [&](const std::vector<Eigen::Vector2i>& lattice) {
+  auto world_ring = [&](const std::vector<LatticePoint>& lattice) {
     bg::model::ring<Point2> ring;
     for (const auto& v : lattice) {
-      const Eigen::Vector2d w = to_world(v.cast<double>());
+      const Eigen::Vector2d w = to_world(Eigen::Vector2d(v.x, v.y));
       ring.push_back({w.x(), w.y()});
     }
     if (!ring.empty()) ring.push_back(ring.front());

@@ -94,10 +94,10 @@ struct VoronoiSegmenter {
     const auto t0 = clock::now();
     const FreeSpace space = binarize(grid, params.binarize);
     // Free space too thin to matter is not traced (BoundaryParams::min_traced_width_m); the
-    // areas still cover the whole free space.
-    const FreeSpace passable = params.boundary.min_traced_width_m > 0.0
-                                   ? open_free_space(space, 0.5 * params.boundary.min_traced_width_m / res)
-                                   : space;
+    // areas still cover the whole free space. Without the option no copy of the mask is made.
+    const bool open_traced = params.boundary.min_traced_width_m > 0.0;
+    const FreeSpace opened = open_traced ? open_free_space(space, 0.5 * params.boundary.min_traced_width_m / res) : FreeSpace{};
+    const FreeSpace& passable = open_traced ? opened : space;
     const auto t1 = clock::now();
     const BoundarySegments boundary = trace_boundary(passable, res, params.boundary);
     out.boundary_segments = boundary.segments.size();
