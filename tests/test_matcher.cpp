@@ -299,12 +299,16 @@ TEST_CASE("estimate_scale: refused with graphs or without refinement; no hypothe
   matcher.params.scale.min_scale = 2.0;
   matcher.params.scale.max_scale = 1.0;
   CHECK_THROWS_AS(matcher.match(building.layout, building.layout), parameter_error);
+  matcher.params.scale = ScaleParams{};
+  matcher.params.scale.finalists = 0;
+  CHECK_THROWS_WITH_AS(matcher.match(building.layout, building.layout), doctest::Contains("finalists"), parameter_error);
   // Nothing to match: every candidate scale fails, and the result says so.
   matcher.params.scale = ScaleParams{};
   OccupancyGrid walls(40, 40, 0.05, {}, CellState::occupied);
   const MatchResult none = matcher.match(walls, building.layout);
   CHECK_FALSE(none.ok);
   CHECK(none.reason.find("scale could not be estimated") != std::string::npos);
+  CHECK(none.statistics.scales_tried == scale_candidates(ScaleParams{}).size() + 1);  // and the fallback run
 }
 
 TEST_CASE("scale candidates cover the range evenly in log scale") {

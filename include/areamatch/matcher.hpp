@@ -310,44 +310,57 @@ class Matcher {
       segment_s += detail::seconds_since(segment_start);
       return at_scale.match_graphs(MapView{&scaled, &graph}, MapView{&dest, &dest_graph});
     };
-    double best_scale = 1.0, best_agreement = -1.0, best_candidate = 1.0;
-    Similarity2 best_T;
-    AreaGraph best_graph;  // the source segmented at best_candidate
+    // The best `scale.finalists` candidates by agreement, best first (ties: the smaller scale).
+    struct Candidate {
+      double scale, agreement;
+      Similarity2 T;
+      AreaGraph graph;  // the source segmented at this scale
+    };
+    std::vector<Candidate> finalists;
     std::size_t tried = 0;
     for (double scale : scale_candidates(p.scale)) {
       AreaGraph graph;
       const MatchResult r = run_at(scale, graph);
       ++tried;
-      if (r.statistics.hypotheses > 0 && r.evidence.agreement > best_agreement) {
-        best_agreement = r.evidence.agreement;
-        best_scale = scale * r.T_dest_source.scale;
-        best_candidate = scale;
-        best_T = r.T_dest_source;
-        best_graph = std::move(graph);
-      }
-    }
-    if (best_agreement >= 0.0 && p.scale.sweep_range > 0.0) {
-      best_scale = best_candidate * sweep_scale(source, best_graph, dest, dest_graph, best_candidate, best_T, p);
+      if (r.statistics.hypotheses == 0) continue;
+      auto at = std::find_if(finalists.begin(), finalists.end(),
+                             [&](const Candidate& c) { return r.evidence.agreement > c.agreement; });
+      if (static_cast<std::size_t>(at - finalists.begin()) >= p.scale.finalists) continue;
+      finalists.insert(at, Candidate{scale, r.evidence.agreement, r.T_dest_source, std::move(graph)});
+      if (finalists.size() > p.scale.finalists) finalists.pop_back();
     }
     MatchResult result;
     AreaGraph graph;
-    if (best_agreement < 0.0) {
+    if (finalists.empty()) {
       result = run_at(1.0, graph);
       result.ok = false;
       result.reason = "the scale could not be estimated: no candidate scale in [" + detail::format_double(p.scale.min_scale) +
                       ", " + detail::format_double(p.scale.max_scale) + "] gave a transform hypothesis" +
                       (result.reason.empty() ? "" : " (" + result.reason + ")");
     } else {
-      const double estimate = std::clamp(best_scale, p.scale.min_scale, p.scale.max_scale);
-      result = run_at(estimate, graph);
-      result.T_dest_source = from_scaled_source(result.T_dest_source, estimate);
-      for (auto& pair : result.matched_areas) pair.T_dest_source = from_scaled_source(pair.T_dest_source, estimate);
-      result.scale_estimated = true;
-      if (!result.ok) result.reason = "at the estimated scale " + detail::format_fixed(result.T_dest_source.scale, 4) + ": " + result.reason;
+      // Each finalist's scale is swept and the whole pipeline re-run there; the re-run the maps
+      // agree with most wins (the first on ties).
+      bool have = false;
+      for (const Candidate& c : finalists) {
+        double scale = c.scale * c.T.scale;
+        if (p.scale.sweep_range > 0.0) scale = c.scale * sweep_scale(source, c.graph, dest, dest_graph, c.scale, c.T, p);
+        const double estimate = std::clamp(scale, p.scale.min_scale, p.scale.max_scale);
+        AreaGraph final_graph;
+        MatchResult r = run_at(estimate, final_graph);
+        ++tried;
+        if (have && !(r.evidence.agreement > result.evidence.agreement)) continue;
+        r.T_dest_source = from_scaled_source(r.T_dest_source, estimate);
+        for (auto& pair : r.matched_areas) pair.T_dest_source = from_scaled_source(pair.T_dest_source, estimate);
+        r.scale_estimated = true;
+        if (!r.ok) r.reason = "at the estimated scale " + detail::format_fixed(r.T_dest_source.scale, 4) + ": " + r.reason;
+        result = std::move(r);
+        graph = std::move(final_graph);
+        have = true;
+      }
     }
     const GridInfo given{source.width(), source.height(), source.resolution(), source.origin()};
     result.pixel_transform = to_pixel_transform(result.T_dest_source, given, dest_graph.grid);
-    result.statistics.scales_tried = tried + 1;
+    result.statistics.scales_tried = tried + (finalists.empty() ? 1 : 0);
     result.timings.segment_source_s = segment_s;
     result.timings.total_s = detail::seconds_since(start);
     result.timings.match_s = result.timings.total_s - segment_s;

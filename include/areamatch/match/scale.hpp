@@ -7,9 +7,10 @@
 /// width in metres — so the scale cannot be read off one segmentation of a wrongly scaled map.
 /// The matcher therefore segments and matches the source at candidate scales spread evenly (in
 /// log scale) over [min_scale, max_scale], each ending in an ICP that refines the scale too;
-/// the candidate whose result the maps agree with most (`MatchEvidence::agreement`) wins, and the
-/// whole pipeline runs once more at the scale its ICP converged to. With 4 candidates per
-/// doubling the nearest one is within 9 % of the truth, well inside what the ICP pulls in.
+/// the candidates whose results the maps agree with most (`MatchEvidence::agreement`) are
+/// finalists: each one's scale is swept, the whole pipeline runs once more at the swept scale,
+/// and the re-run the maps agree with most wins. With 8 candidates per doubling (the default)
+/// the nearest one is within 4.4 % of the truth, well inside what the ICP pulls in.
 ///
 /// Scale s means: the source's true resolution is s × its given resolution. The result's
 /// `T_dest_source` maps the source's world frame *as given* to the destination's, so its
@@ -34,6 +35,11 @@ struct ScaleParams {
   /// the scale in poorly, since walls slide along themselves.
   double sweep_range = 0.06;
   double sweep_step = 0.005;
+  /// The best this many candidates are each swept and re-run, and the re-run the maps agree
+  /// with most wins: one candidate's agreement can flatter a wrong scale that its re-run does
+  /// not confirm (docs/evaluation.md, scale estimation). Each finalist costs one more sweep and
+  /// one more match.
+  std::size_t finalists = 2;
 
   void validate() const {
     detail::require_positive(min_scale, "ScaleParams::min_scale");
@@ -47,6 +53,7 @@ struct ScaleParams {
     if (!(sweep_range >= 0.0 && sweep_range < 0.5)) throw parameter_error("ScaleParams::sweep_range must be in [0, 0.5)");
     if (!(sweep_step > 0.0 && sweep_step <= 0.5)) throw parameter_error("ScaleParams::sweep_step must be in (0, 0.5]");
     if (sweep_range / sweep_step > 1000.0) throw parameter_error("ScaleParams: at most 1000 sweep steps each way");
+    if (finalists < 1 || finalists > 16) throw parameter_error("ScaleParams::finalists must be in [1, 16]");
   }
 };
 
