@@ -8,6 +8,8 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -24,7 +26,9 @@ OccupancyGrid grid_from_text(const std::vector<std::string>& rows, double resolu
   return g;
 }
 
-void check_boundary_contract(const OccupancyGrid& g) {
+/// Checks the boundary at several tolerances; returns how many rings needed repairs in all.
+std::size_t check_boundary_contract(const OccupancyGrid& g) {
+  std::size_t refined = 0;
   BinarizeParams keep_everything;
   keep_everything.max_speckle_area_m2 = 0.0;
   keep_everything.min_free_area_m2 = 0.0;
@@ -34,12 +38,33 @@ void check_boundary_contract(const OccupancyGrid& g) {
     params.simplify_tolerance_m = tolerance;
     const BoundarySegments boundary = trace_boundary(space, g.resolution(), params);
     CHECK(detail::find_conflicts(boundary.segments).empty());
+    // Repairs keep the simplification within its tolerance: every corner of the traced outline
+    // lies that close to some segment of its ring.
+    const detail::TracedRings traced = detail::trace_rings(space);
+    REQUIRE(traced.rings.size() == boundary.ring_count);
+    std::size_t strays = 0;
+    for (std::size_t ring = 0; ring < traced.rings.size(); ++ring)
+      for (const LatticePoint& corner : traced.rings[ring]) {
+        double nearest = std::numeric_limits<double>::infinity();
+        for (std::size_t i = 0; i < boundary.segments.size(); ++i) {
+          if (boundary.ring_of_segment[i] != static_cast<int>(ring)) continue;
+          const Eigen::Vector2d a(boundary.segments[i].low().x(), boundary.segments[i].low().y());
+          const Eigen::Vector2d b(boundary.segments[i].high().x(), boundary.segments[i].high().y());
+          const Eigen::Vector2d p(corner.x, corner.y);
+          const double t = std::clamp((p - a).dot(b - a) / (b - a).squaredNorm(), 0.0, 1.0);
+          nearest = std::min(nearest, (a + t * (b - a) - p).norm());
+        }
+        strays += nearest > tolerance / g.resolution() + 1e-9;
+      }
+    CHECK(strays == 0);
+    refined += boundary.refined_rings;
     // The Voronoi builder accepts it and the skeleton stays in free space.
     const Skeleton skeleton = build_skeleton(space, boundary, g.resolution());
     for (const auto& branch : skeleton.branches)
       for (const auto& s : branch.samples)
         CHECK(space.is_free(static_cast<int>(std::floor(s.position.x())), static_cast<int>(std::floor(s.position.y()))));
   }
+  return refined;
 }
 
 void check_graph_invariants(const AreaGraph& graph) {
@@ -98,6 +123,23 @@ TEST_CASE("boundary segments satisfy Boost.Polygon's contract on nasty shapes") 
         if ((r + c) % 2 == 0) rows[r][c] = '#';
     rows[2][2] = '#';
     check_boundary_contract(grid_from_text(rows, 0.05));
+  }
+  SUBCASE("jagged streaks one cell wide (simplified sides cross: repaired)") {
+    // Laser streaks: free one-cell paths wandering from a room into the wall mass.
+    detail::Random random(11);
+    std::vector<std::string> rows(60, std::string(80, '#'));
+    for (int r = 2; r < 20; ++r)
+      for (int c = 2; c < 78; ++c) rows[r][c] = '.';
+    for (int streak = 0; streak < 8; ++streak) {
+      int c = 6 + 9 * streak, r = 20;
+      for (int step = 0; step < 60 && r < 58; ++step) {
+        rows[r][c] = '.';
+        if (random.integer(0, 2) == 0) c = std::clamp(c + (random.integer(0, 1) == 0 ? -1 : 1), 2, 77);
+        else ++r;
+        rows[r][c] = '.';
+      }
+    }
+    CHECK(check_boundary_contract(grid_from_text(rows, 0.05)) > 0);
   }
   SUBCASE("random blobs") {
     detail::Random random(7);

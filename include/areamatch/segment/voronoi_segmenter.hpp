@@ -45,7 +45,7 @@ struct SegmentationDetails {
   Skeleton skeleton;
   RoomDetection rooms;
   std::size_t boundary_segments = 0;
-  std::size_t reverted_rings = 0;
+  std::size_t refined_rings = 0;
   SegmentationTimings timings;
 };
 
@@ -107,7 +107,7 @@ struct VoronoiSegmenter {
                         std::to_string(params.boundary.max_segments) +
                         "): a very noisy map; raise the limit, or simplify more (--simplify) or erase more speckles (--speckle-area)");
     }
-    out.reverted_rings = boundary.reverted_rings;
+    out.refined_rings = boundary.refined_rings;
     const auto t2 = clock::now();
     out.skeleton = build_skeleton(passable, boundary, res, skeleton_params);
     const auto t3 = clock::now();
