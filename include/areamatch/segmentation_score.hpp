@@ -34,7 +34,7 @@ inline std::vector<int> rooms_from_image(const GreyImage& image, int white = 250
   for (std::size_t i = 0; i < mask.size(); ++i) mask[i] = image.value8(i) >= white;
   std::vector<int> rooms(mask.size(), -1);
   int next = 0;
-  detail::for_each_run_component(mask, image.width, image.height, 1, false, [&](const std::vector<detail::CellRun>& runs) {
+  detail::for_each_run_component(mask, image.width, image.height, 1, false, [&](const detail::RunSpan& runs) {
     for (const auto& run : runs)
       std::fill(rooms.begin() + static_cast<std::ptrdiff_t>(run.row) * image.width + run.begin,
                 rooms.begin() + static_cast<std::ptrdiff_t>(run.row) * image.width + run.end, next);

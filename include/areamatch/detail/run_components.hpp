@@ -73,16 +73,32 @@ inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int w
   return out;
 }
 
+/// A component's runs: a view into `for_each_run_component`'s storage.
+struct RunSpan {
+  const CellRun* first = nullptr;
+  const CellRun* last = nullptr;
+  const CellRun* begin() const { return first; }
+  const CellRun* end() const { return last; }
+  std::size_t size() const { return static_cast<std::size_t>(last - first); }
+};
+
 /// Connected components of the cells with `mask == value`: calls `on_component(runs)` with each
-/// component's runs, components in the order of their first run.
+/// component's runs (a `RunSpan`, in raster order), components in the order of their first run.
+/// The components are all found before the first call, so `on_component` may change `mask`.
 template <class OnComponent>
 void for_each_run_component(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value, bool eight,
                             OnComponent&& on_component) {
   const RunComponents rc = run_components(mask, width, height, value, eight);
-  std::vector<std::vector<CellRun>> components(rc.runs.size());
-  for (std::size_t i = 0; i < rc.runs.size(); ++i) components[rc.component[i]].push_back(rc.runs[i]);
-  for (const auto& component : components)
-    if (!component.empty()) on_component(component);
+  // Runs grouped by component (a counting sort on the component's first run).
+  const std::size_t n = rc.runs.size();
+  std::vector<std::size_t> start(n + 1, 0);
+  for (std::size_t i = 0; i < n; ++i) ++start[rc.component[i] + 1];
+  for (std::size_t i = 0; i < n; ++i) start[i + 1] += start[i];
+  std::vector<CellRun> grouped(n);
+  std::vector<std::size_t> next(start.begin(), start.end() - 1);
+  for (std::size_t i = 0; i < n; ++i) grouped[next[rc.component[i]]++] = rc.runs[i];
+  for (std::size_t c = 0; c < n; ++c)
+    if (start[c + 1] > start[c]) on_component(RunSpan{grouped.data() + start[c], grouped.data() + start[c + 1]});
 }
 
 }  // namespace areamatch::detail

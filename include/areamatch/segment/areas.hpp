@@ -279,8 +279,10 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   const double res = grid.resolution();
   AreaGraph graph;
   graph.grid = {grid.width(), grid.height(), res, grid.origin()};
-  graph.labels.assign(grid.cells().size(), -1);
-  if (N == 0) return graph;
+  if (N == 0) {
+    graph.labels.assign(grid.cells().size(), -1);
+    return graph;
+  }
   // Lattice coordinates of the cropped mask → world metres.
   const Eigen::Vector2d offset(space.offset_col, space.offset_row);
   auto to_world = [&](const Eigen::Vector2d& lattice) { return detail::lattice_to_world(grid, lattice + offset); };
@@ -289,23 +291,28 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   const double radius = params.min_clearance_m / res;
   std::vector<std::uint8_t> core = detail::erode(space, radius + 0.5);
 
-  // Passage lines are barriers.
-  std::vector<std::uint8_t> barrier(N, 0);
+  // Passage lines are barriers: their free cells are marked in `label` until growth is done.
+  if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
+  constexpr int unlabelled = -1, barrier = -2;
+  std::vector<int> label(N, unlabelled);
+  std::vector<std::uint32_t> barrier_cells;
   const SampleGraph& g = rooms.graph;
   for (const auto& p : rooms.passages) {
     // Doors are sealed one cell beyond both walls; junction spokes start at the junction.
     const Eigen::Vector2d direction = (p.line_b - p.line_a).normalized();
     detail::supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
       if (!space.is_free(c, r)) return;
-      barrier[static_cast<std::size_t>(r) * W + c] = 1;
-      core[static_cast<std::size_t>(r) * W + c] = 0;  // growth never enters a barrier cell
+      const std::size_t i = static_cast<std::size_t>(r) * W + c;
+      if (label[i] == barrier) return;
+      label[i] = barrier;
+      core[i] = 0;  // growth never enters a barrier cell
+      barrier_cells.push_back(static_cast<std::uint32_t>(i));
     });
   }
+  std::sort(barrier_cells.begin(), barrier_cells.end());
 
   // Grow regions from their skeleton samples: first over the core, then at most
   // min_clearance + fringe into thinner space (corners and cracks; laser streaks only that far).
-  std::vector<int> label(N, -1);
-  if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
   std::vector<std::uint32_t> queue;
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
@@ -314,7 +321,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     const int r = static_cast<int>(std::floor(g.samples[s].position.y()));
     if (!space.is_free(c, r)) continue;
     const std::size_t i = static_cast<std::size_t>(r) * W + c;
-    if (barrier[i] || label[i] >= 0) continue;
+    if (label[i] != unlabelled) continue;  // a barrier, or seeded already
     label[i] = region;
     queue.push_back(static_cast<std::uint32_t>(i));
   }
@@ -327,7 +334,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       const std::size_t i = frontier[head];
       for (std::ptrdiff_t d : neighbour_offset) {
         const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
-        if (label[j] >= 0 || barrier[j] || !(into_fringe ? space.free[j] : core[j])) continue;
+        if (label[j] != unlabelled || !(into_fringe ? space.free[j] : core[j])) continue;
         label[j] = label[i];
         (into_fringe ? next : frontier).push_back(static_cast<std::uint32_t>(j));
       }
@@ -345,7 +352,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     if (label[i] < 0) continue;
     for (std::ptrdiff_t d : neighbour_offset) {
       const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
-      if (label[j] < 0 && space.free[j] && !barrier[j]) {
+      if (label[j] == unlabelled && space.free[j]) {
         queue.push_back(static_cast<std::uint32_t>(i));
         break;
       }
@@ -369,10 +376,9 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       if (votes[k] > best_votes || (votes[k] == best_votes && candidates[k] < best)) best = candidates[k], best_votes = votes[k];
     return best;
   };
-  std::vector<std::pair<std::size_t, int>> barrier_labels;
-  for (std::size_t i = 0; i < N; ++i)
-    if (barrier[i] && label[i] < 0) barrier_labels.push_back({i, majority_of_neighbours(i)});
-  for (const auto& [i, l] : barrier_labels) label[i] = l;
+  std::vector<int> barrier_labels;
+  for (std::uint32_t i : barrier_cells) barrier_labels.push_back(majority_of_neighbours(i));
+  for (std::size_t k = 0; k < barrier_cells.size(); ++k) label[barrier_cells[k]] = barrier_labels[k];
 
   // From here on the labelling is handled as horizontal runs of equal label: far fewer than
   // cells. Every 4-connected piece of a label is its own region at first.
@@ -605,17 +611,26 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     graph.passages.push_back(passage);
   }
 
-  // Labels back onto the whole grid.
+  // Labels back onto the whole grid, row by row (each row written once: it is most of the time
+  // spent here on large maps).
   std::size_t labelled = 0;
-  for (const auto& run : runs) {
-    if (run.label < 0) continue;
-    const int gr = run.row + space.offset_row;
-    if (gr < 0 || gr >= grid.height()) continue;
-    for (int c = run.begin; c < run.end; ++c) {
-      const int gc = c + space.offset_col;
-      if (gc < 0 || gc >= grid.width()) continue;
-      graph.labels[grid.index(gc, gr)] = run.label;
-      labelled += grid.at(gc, gr) == CellState::free;
+  graph.labels.clear();
+  graph.labels.reserve(grid.cells().size());
+  for (int gr = 0; gr < grid.height(); ++gr) {
+    graph.labels.insert(graph.labels.end(), static_cast<std::size_t>(grid.width()), -1);
+    int* out = &graph.labels[grid.index(0, gr)];
+    const int r = gr - space.offset_row;
+    if (r < 0 || r >= H) continue;
+    for (std::size_t k = row_start[r]; k < row_start[r + 1]; ++k) {
+      const LabelRun& run = runs[k];
+      if (run.label < 0) continue;
+      const int first = std::max(run.begin + space.offset_col, 0);
+      const int last = std::min(run.end + space.offset_col, grid.width());
+      const CellState* state = &grid.cells()[grid.index(0, gr)];
+      for (int gc = first; gc < last; ++gc) {
+        out[gc] = run.label;
+        labelled += state[gc] == CellState::free;
+      }
     }
   }
   const std::size_t free_cells = grid.count().free;

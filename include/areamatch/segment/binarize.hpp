@@ -65,14 +65,18 @@ struct FreeSpace {
 inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& params = {}) {
   params.validate();
   auto is_free = [&](CellState s) { return s == CellState::free || (params.unknown_is_free && s == CellState::unknown); };
+  // Bounding box of the free cells: each row is searched from both ends only as far as its
+  // first and last free cell.
   int min_c = grid.width(), max_c = -1, min_r = grid.height(), max_r = -1;
   for (int r = 0; r < grid.height(); ++r) {
     const CellState* row = &grid.cells()[grid.index(0, r)];
-    for (int c = 0; c < grid.width(); ++c) {
-      if (!is_free(row[c])) continue;
-      min_c = std::min(min_c, c), max_c = std::max(max_c, c);
-      min_r = std::min(min_r, r), max_r = std::max(max_r, r);
-    }
+    int first = 0;
+    while (first < grid.width() && !is_free(row[first])) ++first;
+    if (first == grid.width()) continue;
+    int last = grid.width() - 1;
+    while (!is_free(row[last])) --last;
+    min_c = std::min(min_c, first), max_c = std::max(max_c, last);
+    min_r = std::min(min_r, r), max_r = r;
   }
   FreeSpace space;
   if (max_c < 0) return space;  // no free cell at all
@@ -81,18 +85,19 @@ inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& param
   space.width = max_c - min_c + 3;
   space.height = max_r - min_r + 3;
   space.free.assign(static_cast<std::size_t>(space.width) * space.height, 0);
-  for (int r = 1; r + 1 < space.height; ++r)
-    for (int c = 1; c + 1 < space.width; ++c)
-      space.free[static_cast<std::size_t>(r) * space.width + c] =
-          is_free(grid.at(c + space.offset_col, r + space.offset_row));
+  for (int r = 1; r + 1 < space.height; ++r) {
+    const CellState* from = &grid.cells()[grid.index(min_c, r + space.offset_row)];
+    std::uint8_t* to = &space.free[static_cast<std::size_t>(r) * space.width + 1];
+    for (int c = 0; c + 2 < space.width; ++c) to[c] = is_free(from[c]);
+  }
 
   const double cell_area = grid.resolution() * grid.resolution();
-  auto size_of = [](const std::vector<detail::CellRun>& runs) {
+  auto size_of = [](const detail::RunSpan& runs) {
     std::size_t n = 0;
     for (const auto& run : runs) n += static_cast<std::size_t>(run.end - run.begin);
     return n;
   };
-  auto fill = [&](const std::vector<detail::CellRun>& runs, std::uint8_t value) {
+  auto fill = [&](const detail::RunSpan& runs, std::uint8_t value) {
     for (const auto& run : runs)
       std::fill(space.free.begin() + static_cast<std::ptrdiff_t>(run.row) * space.width + run.begin,
                 space.free.begin() + static_cast<std::ptrdiff_t>(run.row) * space.width + run.end, value);
@@ -100,7 +105,7 @@ inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& param
   const auto max_speckle = static_cast<std::size_t>(std::floor(params.max_speckle_area_m2 / cell_area));
   // In cells, rounded to a micro-cell so that a size of exactly k cells is not lost to noise.
   const double max_speckle_cells = std::floor(params.max_speckle_size_m / grid.resolution() * 1e6 + 0.5) / 1e6;
-  auto fits_speckle_box = [&](const std::vector<detail::CellRun>& runs) {
+  auto fits_speckle_box = [&](const detail::RunSpan& runs) {
     int first_col = space.width, end_col = 0, first_row = space.height, end_row = 0;
     for (const auto& run : runs) {
       first_col = std::min(first_col, run.begin), end_col = std::max(end_col, run.end);
@@ -108,9 +113,9 @@ inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& param
     }
     return std::max(end_col - first_col, end_row - first_row) <= max_speckle_cells;
   };
+  // (The components are found before any is filled, so the mask is changed in place.)
   if (max_speckle > 0 || max_speckle_cells >= 1.0) {
-    const auto copy = space.free;
-    detail::for_each_run_component(copy, space.width, space.height, 0, true, [&](const std::vector<detail::CellRun>& runs) {
+    detail::for_each_run_component(space.free, space.width, space.height, 0, true, [&](const detail::RunSpan& runs) {
       const bool touches_border = std::any_of(runs.begin(), runs.end(), [&](const detail::CellRun& run) {
         return run.row == 0 || run.row == space.height - 1 || run.begin == 0 || run.end == space.width;
       });
@@ -119,8 +124,7 @@ inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& param
   }
   const auto min_free = static_cast<std::size_t>(std::ceil(params.min_free_area_m2 / cell_area));
   if (min_free > 1) {
-    const auto copy = space.free;
-    detail::for_each_run_component(copy, space.width, space.height, 1, false, [&](const std::vector<detail::CellRun>& runs) {
+    detail::for_each_run_component(space.free, space.width, space.height, 1, false, [&](const detail::RunSpan& runs) {
       if (size_of(runs) < min_free) fill(runs, 0);
     });
   }
