@@ -626,11 +626,10 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       if (run.label < 0) continue;
       const int first = std::max(run.begin + space.offset_col, 0);
       const int last = std::min(run.end + space.offset_col, grid.width());
+      if (first >= last) continue;
       const CellState* state = &grid.cells()[grid.index(0, gr)];
-      for (int gc = first; gc < last; ++gc) {
-        out[gc] = run.label;
-        labelled += state[gc] == CellState::free;
-      }
+      std::fill(out + first, out + last, run.label);
+      labelled += static_cast<std::size_t>(std::count(state + first, state + last, CellState::free));
     }
   }
   const std::size_t free_cells = grid.count().free;

@@ -160,11 +160,18 @@ inline TracedRings trace_rings(const FreeSpace& space) {
     traced.rings.push_back(ring);
     traced.pinned.push_back(pinned);
   };
-  for (int r = 0; r < H; ++r) {
-    for (int c = 0; c < W; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * W + c;
-      // Free cells never lie on the mask's border, so the four neighbours are inside it.
-      if (!space.free[i] || (space.free[i - 1] && space.free[i + 1] && space.free[i - W] && space.free[i + W])) continue;
+  // Boundary cells (free, with a non-free neighbour) in raster order. Free cells never lie on
+  // the mask's border, so rows 0 and H − 1 hold none and the four neighbours exist. The test is
+  // done a row at a time without branches (vectorised) and the row then scanned for hits.
+  std::vector<std::uint8_t> boundary_cell(static_cast<std::size_t>(std::max(W, 0)), 0);
+  for (int r = 1; r + 1 < H; ++r) {
+    const std::uint8_t* above = &space.free[static_cast<std::size_t>(r - 1) * W];
+    const std::uint8_t* row = above + W;
+    const std::uint8_t* below = row + W;
+    for (int c = 1; c + 1 < W; ++c)
+      boundary_cell[c] = static_cast<std::uint8_t>(row[c] & ~(row[c - 1] & row[c + 1] & above[c] & below[c]) & 1);
+    for (int c = 1; c + 1 < W; ++c) {
+      if (!boundary_cell[c]) continue;
       for (int k = 0; k < 4; ++k) tracer.trace_from(c, r, k, keep);
     }
   }
