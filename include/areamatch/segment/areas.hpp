@@ -74,6 +74,47 @@ void supercover_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Mark&& 
   }
 }
 
+// The erosion's byte kernels, each over `count` cells of distinct rows. `__restrict` and the
+// fixed blocks of `erosion_block` cells (`in_blocks`) let GCC vectorise them at -O2 as well as
+// -O3: at -O2 it vectorises only loops that need no alias check and no scalar remainder, and
+// run scalar the erosion of office_g took 20 ms instead of 2.
+constexpr int erosion_block = 32;
+
+template <class Kernel>
+inline void in_blocks(int begin, int end, Kernel&& kernel) {
+  int c = begin;
+  for (; c + erosion_block <= end; c += erosion_block) kernel(c, erosion_block);
+  if (c < end) kernel(c, end - c);
+}
+
+/// Vertical distance to a non-free cell from the row above's, capped (0 on non-free cells).
+inline void grow_from_above(std::uint8_t* __restrict row, const std::uint8_t* __restrict above,
+                            const std::uint8_t* __restrict free, int count, std::uint8_t cap) {
+  for (int k = 0; k < count; ++k) {
+    const std::uint8_t grown = above[k] < cap ? static_cast<std::uint8_t>(above[k] + 1) : cap;
+    row[k] = free[k] ? grown : 0;
+  }
+}
+
+/// The same from the row below, kept where smaller.
+inline void grow_from_below(std::uint8_t* __restrict row, const std::uint8_t* __restrict below, int count,
+                            std::uint8_t cap) {
+  for (int k = 0; k < count; ++k) {
+    const std::uint8_t grown = below[k] < cap ? static_cast<std::uint8_t>(below[k] + 1) : cap;
+    row[k] = std::min(row[k], grown);
+  }
+}
+
+inline void at_least(std::uint8_t* __restrict out, const std::uint8_t* __restrict row, int count, std::uint8_t n) {
+  for (int k = 0; k < count; ++k) out[k] = row[k] >= n;
+}
+
+/// out &= (left ≥ n) and (right ≥ n); left and right may overlap (both are only read).
+inline void and_both_at_least(std::uint8_t* __restrict out, const std::uint8_t* __restrict left,
+                              const std::uint8_t* __restrict right, int count, std::uint8_t n) {
+  for (int k = 0; k < count; ++k) out[k] &= static_cast<std::uint8_t>((left[k] >= n) & (right[k] >= n));
+}
+
 /// Cells of `mask` farther than `distance` (in cells, centre to centre) from every cell outside
 /// it: the erosion by a disc. Works on byte column distances and a short window per row, so it
 /// needs one byte per cell. Beyond the mask's edge counts as outside.
@@ -91,18 +132,12 @@ inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mas
     const std::uint8_t* above = &vertical[static_cast<std::size_t>(r - 1) * W];
     const std::uint8_t* free = &mask[static_cast<std::size_t>(r) * W];
     std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    for (int c = 0; c < W; ++c) {
-      const std::uint8_t grown = above[c] < cap ? static_cast<std::uint8_t>(above[c] + 1) : cap;
-      row[c] = free[c] ? grown : 0;
-    }
+    in_blocks(0, W, [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
   }
   for (int r = H - 2; r >= 0; --r) {
     const std::uint8_t* below = &vertical[static_cast<std::size_t>(r + 1) * W];
     std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    for (int c = 0; c < W; ++c) {
-      const std::uint8_t grown = below[c] < cap ? static_cast<std::uint8_t>(below[c] + 1) : cap;
-      row[c] = std::min(row[c], grown);
-    }
+    in_blocks(0, W, [&](int c, int count) { grow_from_below(row + c, below + c, count, cap); });
   }
   // Core iff for every column offset dx within reach: vertical(c + dx) ≥ need[|dx|], the
   // smallest vertical distance that keeps that column's nearest obstacle far enough. One pass
@@ -115,7 +150,7 @@ inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mas
   for (int r = 0; r < H; ++r) {
     const std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
     std::uint8_t* out = &core[static_cast<std::size_t>(r) * W];
-    for (int c = 0; c < W; ++c) out[c] = row[c] >= need[0];
+    in_blocks(0, W, [&](int c, int count) { at_least(out + c, row + c, count, need[0]); });
     for (int dx = 1; dx <= reach; ++dx) {
       const std::uint8_t n = need[dx];
       const int edge = std::min(dx, W);
@@ -123,7 +158,7 @@ inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mas
         for (int c = 0; c < edge; ++c) out[c] = 0;
         for (int c = std::max(W - dx, 0); c < W; ++c) out[c] = 0;
       }
-      for (int c = dx; c < W - dx; ++c) out[c] &= static_cast<std::uint8_t>((row[c - dx] >= n) & (row[c + dx] >= n));
+      in_blocks(dx, W - dx, [&](int c, int count) { and_both_at_least(out + c, row + c - dx, row + c + dx, count, n); });
     }
   }
   return core;
