@@ -229,6 +229,32 @@ TEST_CASE("speckles: small blobs go by area, and by size with max_speckle_size_m
   CHECK_THROWS_AS(binarize(g, by_size), parameter_error);
 }
 
+TEST_CASE("binarize: unknown cells are obstacles unless unknown_is_free; the mask is the free cells' box") {
+  // 0.1 m cells: a room of free cells (rows 2-9), an unknown band beside it (rows 2-9, columns
+  // 40-59, more than 32 cells wide so the band spans a whole block of the row kernel), walls.
+  std::vector<std::string> rows(12, std::string(64, '#'));
+  for (int r = 2; r < 10; ++r) {
+    rows[r].replace(2, 38, std::string(38, '.'));
+    rows[r].replace(40, 20, std::string(20, '?'));
+  }
+  const OccupancyGrid g = grid_from_text(rows);
+  BinarizeParams keep_everything;
+  keep_everything.max_speckle_area_m2 = 0.0;
+  keep_everything.min_free_area_m2 = 0.0;
+  const FreeSpace known = binarize(g, keep_everything);
+  CHECK(known.offset_col == 1);
+  CHECK(known.offset_row == 1);
+  CHECK(known.width == 38 + 2);
+  CHECK(known.height == 8 + 2);
+  CHECK(known.count() == 38u * 8u);
+  keep_everything.unknown_is_free = true;
+  const FreeSpace with_unknown = binarize(g, keep_everything);
+  CHECK(with_unknown.width == 58 + 2);
+  CHECK(with_unknown.count() == 58u * 8u);
+  CHECK(with_unknown.is_free(59 - with_unknown.offset_col, 9 - with_unknown.offset_row));
+  CHECK_FALSE(with_unknown.is_free(60 - with_unknown.offset_col, 9 - with_unknown.offset_row));
+}
+
 TEST_CASE("open_free_space is the opening by a disc, on its fast path and its general one") {
   detail::Random random(77);
   for (int trial = 0; trial < 20; ++trial) {

@@ -2,8 +2,9 @@
 /// \file segment/binarize.hpp
 /// Stage 1 of segmentation: occupancy grid → free-space mask, with speckles removed.
 
-#include "../error.hpp"
+#include "../detail/blocks.hpp"
 #include "../detail/run_components.hpp"
+#include "../error.hpp"
 #include "../grid.hpp"
 
 #include <algorithm>
@@ -60,6 +61,17 @@ struct FreeSpace {
   }
 };
 
+namespace detail {
+
+/// out = 1 where the cell is free (or unknown, with `unknown_is_free`); see detail/blocks.hpp.
+inline void free_flags(std::uint8_t* __restrict out, const CellState* __restrict in, int count, bool unknown_is_free) {
+  const auto unknown = static_cast<std::uint8_t>(unknown_is_free);
+  for (int k = 0; k < count; ++k)
+    out[k] = static_cast<std::uint8_t>((in[k] == CellState::free) | (unknown & (in[k] == CellState::unknown)));
+}
+
+}  // namespace detail
+
 /// Free cells of `grid` (unknown per `params`), without obstacle speckles and free crumbs,
 /// cropped to where the free space is.
 inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& params = {}) {
@@ -88,7 +100,9 @@ inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& param
   for (int r = 1; r + 1 < space.height; ++r) {
     const CellState* from = &grid.cells()[grid.index(min_c, r + space.offset_row)];
     std::uint8_t* to = &space.free[static_cast<std::size_t>(r) * space.width + 1];
-    for (int c = 0; c + 2 < space.width; ++c) to[c] = is_free(from[c]);
+    detail::in_blocks(0, space.width - 2, [&](int c, int count) {
+      detail::free_flags(to + c, from + c, count, params.unknown_is_free);
+    });
   }
 
   const double cell_area = grid.resolution() * grid.resolution();

@@ -16,6 +16,7 @@
 /// unsimplified ring, which satisfies it by construction). `detail::find_conflicts` checks the
 /// contract and is run on every result.
 
+#include "../detail/blocks.hpp"
 #include "../error.hpp"
 #include "binarize.hpp"
 
@@ -152,6 +153,14 @@ class RingTracer {
   std::vector<bool> pinned_;
 };
 
+/// out = cell free and some 4-neighbour not (masks of 0/1); `count` cells, see detail/blocks.hpp.
+inline void boundary_flags(std::uint8_t* __restrict out, const std::uint8_t* __restrict cell,
+                           const std::uint8_t* __restrict left, const std::uint8_t* __restrict right,
+                           const std::uint8_t* __restrict above, const std::uint8_t* __restrict below, int count) {
+  for (int k = 0; k < count; ++k)
+    out[k] = static_cast<std::uint8_t>(cell[k] & ~(left[k] & right[k] & above[k] & below[k]) & 1);
+}
+
 inline TracedRings trace_rings(const FreeSpace& space) {
   const int W = space.width, H = space.height;
   TracedRings traced;
@@ -165,11 +174,10 @@ inline TracedRings trace_rings(const FreeSpace& space) {
   // done a row at a time without branches (vectorised) and the row then scanned for hits.
   std::vector<std::uint8_t> boundary_cell(static_cast<std::size_t>(std::max(W, 0)), 0);
   for (int r = 1; r + 1 < H; ++r) {
-    const std::uint8_t* above = &space.free[static_cast<std::size_t>(r - 1) * W];
-    const std::uint8_t* row = above + W;
-    const std::uint8_t* below = row + W;
-    for (int c = 1; c + 1 < W; ++c)
-      boundary_cell[c] = static_cast<std::uint8_t>(row[c] & ~(row[c - 1] & row[c + 1] & above[c] & below[c]) & 1);
+    const std::uint8_t* row = &space.free[static_cast<std::size_t>(r) * W];
+    in_blocks(1, W - 1, [&](int c, int count) {
+      boundary_flags(&boundary_cell[c], row + c, row + c - 1, row + c + 1, row + c - W, row + c + W, count);
+    });
     for (int c = 1; c + 1 < W; ++c) {
       if (!boundary_cell[c]) continue;
       for (int k = 0; k < 4; ++k) tracer.trace_from(c, r, k, keep);
