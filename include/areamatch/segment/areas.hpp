@@ -637,8 +637,8 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     graph.passages.push_back(passage);
   }
 
-  // Labels back onto the whole grid, row by row (each row written once: it is most of the time
-  // spent here on large maps).
+  // Labels back onto the whole grid, row by row: each row is written once, while in cache
+  // (filling the grid with −1 first and scattering the runs after cost office_g ~1.3 ms more).
   std::size_t labelled = 0;
   graph.labels.clear();
   graph.labels.reserve(grid.cells().size());
