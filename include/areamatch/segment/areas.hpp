@@ -647,13 +647,13 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     int* out = &graph.labels[grid.index(0, gr)];
     const int r = gr - space.offset_row;
     if (r < 0 || r >= H) continue;
+    const CellState* state = &grid.cells()[grid.index(0, gr)];
     for (std::size_t k = row_start[r]; k < row_start[r + 1]; ++k) {
       const LabelRun& run = runs[k];
       if (run.label < 0) continue;
       const int first = std::max(run.begin + space.offset_col, 0);
       const int last = std::min(run.end + space.offset_col, grid.width());
       if (first >= last) continue;
-      const CellState* state = &grid.cells()[grid.index(0, gr)];
       std::fill(out + first, out + last, run.label);
       labelled += static_cast<std::size_t>(std::count(state + first, state + last, CellState::free));
     }

@@ -63,11 +63,14 @@ struct FreeSpace {
 
 namespace detail {
 
-/// out = 1 where the cell is free (or unknown, with `unknown_is_free`); see detail/blocks.hpp.
+/// Whether a cell counts as free space (unknown ones only with `unknown_is_free`).
+inline bool counts_as_free(CellState s, bool unknown_is_free) {
+  return s == CellState::free || (unknown_is_free && s == CellState::unknown);
+}
+
+/// out = 1 where the cell counts as free; see detail/blocks.hpp.
 inline void free_flags(std::uint8_t* __restrict out, const CellState* __restrict in, int count, bool unknown_is_free) {
-  const auto unknown = static_cast<std::uint8_t>(unknown_is_free);
-  for (int k = 0; k < count; ++k)
-    out[k] = static_cast<std::uint8_t>((in[k] == CellState::free) | (unknown & (in[k] == CellState::unknown)));
+  for (int k = 0; k < count; ++k) out[k] = counts_as_free(in[k], unknown_is_free);
 }
 
 }  // namespace detail
@@ -76,7 +79,7 @@ inline void free_flags(std::uint8_t* __restrict out, const CellState* __restrict
 /// cropped to where the free space is.
 inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& params = {}) {
   params.validate();
-  auto is_free = [&](CellState s) { return s == CellState::free || (params.unknown_is_free && s == CellState::unknown); };
+  auto is_free = [&](CellState s) { return detail::counts_as_free(s, params.unknown_is_free); };
   // Bounding box of the free cells: each row is searched from both ends only as far as its
   // first and last free cell.
   int min_c = grid.width(), max_c = -1, min_r = grid.height(), max_r = -1;
