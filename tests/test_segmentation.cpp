@@ -2,6 +2,7 @@
 // synthetic buildings, valid non-overlapping polygons, determinism, and bad input.
 #include <areamatch/areamatch.hpp>
 #include <areamatch/detail/random.hpp>
+#include <areamatch/detail/voronoi_circles.hpp>
 #include <areamatch/segmentation_score.hpp>
 
 #include <doctest/doctest.h>
@@ -9,6 +10,7 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <limits>
 #include <string>
 #include <vector>
@@ -147,6 +149,82 @@ TEST_CASE("boundary segments satisfy Boost.Polygon's contract on nasty shapes") 
       std::vector<std::string> rows(50, std::string(60, '.'));
       for (int k = 0; k < 300; ++k) rows[random.integer(0, 49)][random.integer(0, 59)] = '#';
       check_boundary_contract(grid_from_text(rows, 0.05));
+    }
+  }
+}
+
+TEST_CASE("corner circle events agree with Boost's own (exact when needed) computation") {
+  // detail::endpoint_circle replaces Boost's point–segment–segment circle when the point is an
+  // endpoint of a segment; Boost accepts 64 ulps, so must we (it falls back to multiprecision).
+  using Site = boost::polygon::detail::site_event<int>;
+  using Circle = boost::polygon::detail::circle_event<double>;
+  using Predicates = boost::polygon::detail::voronoi_predicates<boost::polygon::detail::voronoi_ctype_traits<int>>;
+  Predicates::lazy_circle_formation_functor<Site, Circle> boost_formation;
+  auto ulps = [](double mine, double theirs) {
+    return mine == theirs ? 0.0 : std::abs(mine - theirs) / (std::abs(theirs) * std::numeric_limits<double>::epsilon());
+  };
+  detail::Random random(5);
+  int computed = 0, both_ends = 0;
+  double worst = 0.0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    const int span = trial % 2 ? 30 : 3000;  // short walls far from the origin are the hard case
+    auto coordinate = [&] { return random.integer(0, span); };
+    const int px = coordinate(), py = coordinate();
+    const Site point(px, py);
+    Site a(px, py, coordinate(), coordinate());
+    const bool shared = random.chance(0.3);
+    Site b = shared ? Site(coordinate(), coordinate(), px, py) : Site(coordinate(), coordinate(), coordinate(), coordinate());
+    if (a.point0() == a.point1() || b.point0() == b.point1() || (!shared && (b.point0() == point.point0() || b.point1() == point.point0())))
+      continue;
+    if (random.chance(0.5)) std::swap(a, b);  // the point on either segment, either end
+    if (random.chance(0.5)) a = Site(a.point1(), a.point0());
+    Circle mine, theirs;
+    if (!detail::endpoint_circle(point, a, b, mine)) continue;
+    boost_formation.pss(point, a, b, 1, theirs);
+    ++computed;
+    both_ends += shared;
+    INFO("trial " << trial);
+    worst = std::max({worst, ulps(mine.x(), theirs.x()), ulps(mine.y(), theirs.y()), ulps(mine.lower_x(), theirs.lower_x())});
+    CHECK(ulps(mine.x(), theirs.x()) <= 64.0);
+    CHECK(ulps(mine.y(), theirs.y()) <= 64.0);
+    CHECK(ulps(mine.lower_x(), theirs.lower_x()) <= 64.0);
+  }
+  MESSAGE("corner circles compared: " << computed << " (" << both_ends << " at a shared end), worst " << worst << " ulps");
+  CHECK(computed > 10000);
+}
+
+TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram") {
+  // Same cells, edges and vertices as boost::polygon::construct_voronoi on real wall outlines
+  // (random rooms with blobs), vertices equal to within a few ulps.
+  detail::Random random(31);
+  for (int trial = 0; trial < 30; ++trial) {
+    std::vector<std::string> rows(60, std::string(80, '.'));
+    for (int c = 0; c < 80; ++c) rows[0][c] = rows[59][c] = '#';
+    for (int r = 0; r < 60; ++r) rows[r][0] = rows[r][79] = '#';
+    for (int k = random.integer(5, 40); k > 0; --k) {
+      const int r = random.integer(1, 55), c = random.integer(1, 75), h = random.integer(1, 4), w = random.integer(1, 4);
+      for (int dr = 0; dr < h; ++dr)
+        for (int dc = 0; dc < w; ++dc) rows[r + dr][c + dc] = '#';
+    }
+    const OccupancyGrid g = grid_from_text(rows, 0.05);
+    const FreeSpace space = binarize(g);
+    BoundaryParams params;
+    params.simplify_tolerance_m = trial % 3 == 0 ? 0.0 : 0.1;
+    const BoundarySegments boundary = trace_boundary(space, g.resolution(), params);
+    boost::polygon::voronoi_diagram<double> theirs, ours;
+    boost::polygon::construct_voronoi(boundary.segments.begin(), boundary.segments.end(), &theirs);
+    detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &ours);
+    INFO("trial " << trial);
+    REQUIRE(ours.cells().size() == theirs.cells().size());
+    REQUIRE(ours.edges().size() == theirs.edges().size());
+    REQUIRE(ours.vertices().size() == theirs.vertices().size());
+    for (std::size_t i = 0; i < ours.vertices().size(); ++i) {
+      CHECK(ours.vertices()[i].x() == doctest::Approx(theirs.vertices()[i].x()).epsilon(1e-12));
+      CHECK(ours.vertices()[i].y() == doctest::Approx(theirs.vertices()[i].y()).epsilon(1e-12));
+    }
+    for (std::size_t i = 0; i < ours.edges().size(); ++i) {
+      CHECK(ours.edges()[i].cell()->source_index() == theirs.edges()[i].cell()->source_index());
+      CHECK(ours.edges()[i].is_primary() == theirs.edges()[i].is_primary());
     }
   }
 }

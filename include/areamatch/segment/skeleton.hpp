@@ -11,6 +11,7 @@
 /// Every sample keeps its two *feet*: the nearest points on the two walls it lies between, which
 /// later give each passage's line across the opening.
 
+#include "../detail/voronoi_circles.hpp"
 #include "../error.hpp"
 #include "binarize.hpp"
 #include "boundary.hpp"
@@ -164,7 +165,9 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   if (boundary.segments.empty()) return skeleton;
 
   bp::voronoi_diagram<double> diagram;
-  bp::construct_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram);
+  // Boost.Polygon's builder, with corner circle events computed without multiprecision when
+  // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
+  detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram);
 
   auto is_free_at = [&](double x, double y) {
     return space.is_free(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
