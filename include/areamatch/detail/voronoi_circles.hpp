@@ -1,17 +1,20 @@
 #pragma once
 /// \file detail/voronoi_circles.hpp
-/// Boost.Polygon's segment Voronoi builder with a faster circle event for the commonest case of
-/// wall outlines: a corner point and two segments, the point being an endpoint of one or both.
+/// Boost.Polygon's segment Voronoi builder with faster circle events for the commonest cases of
+/// wall outlines: a point site that is an endpoint of one of the segment sites involved.
 ///
 /// Boost computes the circle through a point and tangent to two segments ("pss") from the
-/// intersection of the two segment lines. When the point lies on one of the lines that formula
-/// cancels heavily (a short wall piece far from the origin) and its error estimate exceeds the
-/// 64 ulps Boost accepts, so it recomputes the event in multiprecision: on the shared maps every
-/// such event did, about half of `construct_voronoi`'s time. Here the same circle is computed
-/// from the point directly, with a rounding-error bound; if the bound is above `max_ulps` (or
-/// the case does not apply) Boost's own computation runs as before.
+/// intersection of the two segment lines, and the circle through two points tangent to a segment
+/// ("pps") from the points' bisector. When a point lies on a segment's line both formulas cancel
+/// heavily (a short wall piece far from the origin), their error estimate exceeds the 64 ulps
+/// Boost accepts, and the event is recomputed in multiprecision: on the shared maps all such pss
+/// events and a third of the pps ones were, about half of `construct_voronoi`'s time. Here the
+/// same circles are computed from that point directly, with a rounding-error bound; if the bound
+/// is above `max_ulps` (or the case does not apply) Boost's own computation runs as before. The
+/// diagram is Boost's (tests compare the edges), only events that tie within Boost's tolerance
+/// may come out in another order.
 ///
-/// Geometry, in Boost's orientation (segment 1 runs from site2's point1 to point0, segment 2
+/// Geometry of pss, in Boost's orientation (segment 1 runs from site2's point1 to point0, segment 2
 /// from site3's point0 to point1; d1, d2 their directions): the circle's centre c lies on the
 /// bisector where the signed distances to the two lines cancel, L1(c) + L2(c) = 0. With the
 /// point p on line 1 (L1(p) = 0) the circle touches line 1 at p, so c = p + s·n1 with n1 the
@@ -27,62 +30,27 @@
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>
+#include <initializer_list>
 
 namespace areamatch::detail {
 
 namespace bpd = boost::polygon::detail;
 
-/// The circle through point site `point`, tangent to segment sites `segment1` and `segment2`
-/// (Boost's pss roles), when the point is an endpoint of one or both segments and the result is
-/// provably within `max_ulps` relative rounding error. Returns false otherwise.
-template <class Site, class Circle>
-bool endpoint_circle(const Site& point, const Site& segment1, const Site& segment2, Circle& circle) {
+/// The circle centred at p + k·normal with radius |k|·|normal| (p, normal integers), as a
+/// Boost circle event (centre, and the sweep position centre.x + radius), if its rounding error
+/// is provably within `max_ulps` of every coordinate. `k` may carry up to 5 epsilon of error.
+template <class Circle>
+bool circle_from_offset(double px, double py, double k, double normal_x, double normal_y, double normal_length,
+                        Circle& circle) {
   // Boost accepts 64 ulps (in units of machine epsilon) before recomputing exactly; stay within half.
   constexpr double max_ulps = 32.0;
-  const auto& p = point.point0();
-  const bool on1 = p == segment1.point0() || p == segment1.point1();
-  const bool on2 = p == segment2.point0() || p == segment2.point1();
-  if (!on1 && !on2) return false;
-  const double px = p.x(), py = p.y();
-  if (on1 && on2) {  // both segments end at p: the circle is p itself
-    circle = Circle(px, py, px);
-    return true;
-  }
-  // Coordinates below 2^26 keep every product below exact-integer range of int64 (and of the
-  // bound below); larger inputs take Boost's route.
-  constexpr long long limit = 1LL << 26;
-  for (const auto& q : {p, segment1.point0(), segment1.point1(), segment2.point0(), segment2.point1()}) {
-    if (std::llabs(q.x()) >= limit || std::llabs(q.y()) >= limit) return false;
-  }
-  using ll = long long;
-  const ll d1x = ll{segment1.point0().x()} - segment1.point1().x(), d1y = ll{segment1.point0().y()} - segment1.point1().y();
-  const ll d2x = ll{segment2.point1().x()} - segment2.point0().x(), d2y = ll{segment2.point1().y()} - segment2.point0().y();
-  const ll dot = d1x * d2x + d1y * d2y;
-  const ll cross = d1x * d2y - d1y * d2x;
-  const double length1_sq = static_cast<double>(d1x * d1x + d1y * d1y);
-  const double length2_sq = static_cast<double>(d2x * d2x + d2y * d2y);
-  const double lengths = std::sqrt(length1_sq * length2_sq);
-  const double D = dot >= 0 ? lengths + static_cast<double>(dot)
-                            : static_cast<double>(cross) * static_cast<double>(cross) / (lengths - static_cast<double>(dot));
-  if (!(D > 0.0)) return false;  // antiparallel: Boost's parallel-segment case
-  ll offset_numerator, normal_x, normal_y;
-  double normal_length;
-  if (on1) {  // distance of p from line 2 (times |d2|); the centre lies on line 1's normal at p
-    offset_numerator = d2x * (ll{p.y()} - segment2.point0().y()) - d2y * (ll{p.x()} - segment2.point0().x());
-    normal_x = -d1y, normal_y = d1x;
-    normal_length = std::sqrt(length1_sq);
-  } else {
-    offset_numerator = d1x * (ll{p.y()} - segment1.point1().y()) - d1y * (ll{p.x()} - segment1.point1().x());
-    normal_x = -d2y, normal_y = d2x;
-    normal_length = std::sqrt(length2_sq);
-  }
-  const double k = static_cast<double>(offset_numerator) / D;
-  const double offset_x = k * static_cast<double>(normal_x), offset_y = k * static_cast<double>(normal_y);
-  const double cx = px - offset_x, cy = py - offset_y;
+  const double offset_x = k * normal_x, offset_y = k * normal_y;
+  const double cx = px + offset_x, cy = py + offset_y;
   const double radius = std::abs(k) * normal_length;
   const double lower_x = cx + radius;
-  // Rounding, in units of epsilon: D carries ≤ 3.75, k ≤ 4.75, the offsets ≤ 5.25, the radius
-  // ≤ 6.25, each sum 0.5 more; bounded here by 8 per term plus 1 for the final rounding.
+  // Rounding, in units of epsilon: the offsets carry ≤ 5.5, the radius ≤ 6.5 (normal_length a
+  // square root of an integer: ≤ 1), each sum 0.5 more; bounded by 8 per term plus 1 for the
+  // final rounding.
   const double error_x = 8.0 * std::abs(offset_x) + std::abs(cx);
   const double error_y = 8.0 * std::abs(offset_y) + std::abs(cy);
   const double error_lower = error_x + 8.0 * radius + std::abs(lower_x);
@@ -92,7 +60,81 @@ bool endpoint_circle(const Site& point, const Site& segment1, const Site& segmen
   return true;
 }
 
-/// Boost's lazy circle formation with `endpoint_circle` tried first for point–segment–segment.
+/// Coordinates below 2^26 keep every integer product below here within int64 and exactly
+/// representable sums; larger inputs take Boost's route.
+template <class Point>
+bool small_coordinates(std::initializer_list<Point> points) {
+  constexpr long long limit = 1LL << 26;
+  for (const auto& q : points)
+    if (std::llabs(q.x()) >= limit || std::llabs(q.y()) >= limit) return false;
+  return true;
+}
+
+/// The circle through point site `point`, tangent to segment sites `segment1` and `segment2`
+/// (Boost's pss roles), when the point is an endpoint of one or both segments and the result is
+/// provably accurate (see the file comment). Returns false otherwise.
+template <class Site, class Circle>
+bool endpoint_circle(const Site& point, const Site& segment1, const Site& segment2, Circle& circle) {
+  const auto& p = point.point0();
+  const bool on1 = p == segment1.point0() || p == segment1.point1();
+  const bool on2 = p == segment2.point0() || p == segment2.point1();
+  if (!on1 && !on2) return false;
+  const double px = p.x(), py = p.y();
+  if (on1 && on2) {  // both segments end at p: the circle is p itself
+    circle = Circle(px, py, px);
+    return true;
+  }
+  if (!small_coordinates({p, segment1.point0(), segment1.point1(), segment2.point0(), segment2.point1()})) return false;
+  using ll = long long;
+  const ll d1x = ll{segment1.point0().x()} - segment1.point1().x(), d1y = ll{segment1.point0().y()} - segment1.point1().y();
+  const ll d2x = ll{segment2.point1().x()} - segment2.point0().x(), d2y = ll{segment2.point1().y()} - segment2.point0().y();
+  const ll dot = d1x * d2x + d1y * d2y;
+  const ll cross = d1x * d2y - d1y * d2x;
+  const double length1_sq = static_cast<double>(d1x * d1x + d1y * d1y);
+  const double length2_sq = static_cast<double>(d2x * d2x + d2y * d2y);
+  const double lengths = std::sqrt(length1_sq * length2_sq);
+  // D carries ≤ 3.75 epsilon, the quotient below ≤ 4.75.
+  const double D = dot >= 0 ? lengths + static_cast<double>(dot)
+                            : static_cast<double>(cross) * static_cast<double>(cross) / (lengths - static_cast<double>(dot));
+  if (!(D > 0.0)) return false;  // antiparallel: Boost's parallel-segment case
+  if (on1) {  // distance of p from line 2 (times |d2|); the centre lies on line 1's normal at p
+    const ll numerator = d2x * (ll{p.y()} - segment2.point0().y()) - d2y * (ll{p.x()} - segment2.point0().x());
+    return circle_from_offset(px, py, -static_cast<double>(numerator) / D, static_cast<double>(-d1y), static_cast<double>(d1x),
+                              std::sqrt(length1_sq), circle);
+  }
+  const ll numerator = d1x * (ll{p.y()} - segment1.point1().y()) - d1y * (ll{p.x()} - segment1.point1().x());
+  return circle_from_offset(px, py, -static_cast<double>(numerator) / D, static_cast<double>(-d2y), static_cast<double>(d2x),
+                            std::sqrt(length2_sq), circle);
+}
+
+/// The circle through point sites `point1`, `point2` tangent to segment site `segment` (Boost's
+/// pps roles), when one of the points is an endpoint of the segment: the circle touches the
+/// segment's line there, so its centre is e + k·perp(d) with e that endpoint, d the segment's
+/// direction and k = |o − e|² / (2·cross(d, o − e)) for the other point o (one circle: Boost's
+/// two solutions coincide). Returns false when that does not apply or is not provably accurate.
+template <class Site, class Circle>
+bool endpoint_circle_two_points(const Site& point1, const Site& point2, const Site& segment, Circle& circle) {
+  const auto& a = point1.point0();
+  const auto& b = point2.point0();
+  const bool a_on = a == segment.point0() || a == segment.point1();
+  const bool b_on = b == segment.point0() || b == segment.point1();
+  if (a_on == b_on) return false;
+  if (!small_coordinates({a, b, segment.point0(), segment.point1()})) return false;
+  const auto& e = a_on ? a : b;
+  const auto& o = a_on ? b : a;
+  using ll = long long;
+  const ll dx = ll{segment.point1().x()} - segment.point0().x(), dy = ll{segment.point1().y()} - segment.point0().y();
+  const ll vx = ll{o.x()} - e.x(), vy = ll{o.y()} - e.y();
+  const ll cross = dx * vy - dy * vx;
+  if (cross == 0) return false;  // both points on the line
+  // k carries ≤ 1.5 epsilon.
+  const double k = static_cast<double>(vx * vx + vy * vy) / (2.0 * static_cast<double>(cross));
+  return circle_from_offset(static_cast<double>(e.x()), static_cast<double>(e.y()), k, static_cast<double>(-dy),
+                            static_cast<double>(dx), std::sqrt(static_cast<double>(dx * dx + dy * dy)), circle);
+}
+
+/// Boost's lazy circle formation with `endpoint_circle` (pss) and `endpoint_circle_two_points`
+/// (pps) tried first.
 template <class Site, class Circle>
 struct EndpointCircleFormation {
   using ctype_traits = bpd::voronoi_ctype_traits<bpd::int32>;
@@ -100,7 +142,7 @@ struct EndpointCircleFormation {
 
   void ppp(const Site& a, const Site& b, const Site& c, Circle& circle) { boost_formation.ppp(a, b, c, circle); }
   void pps(const Site& a, const Site& b, const Site& c, int index, Circle& circle) {
-    boost_formation.pps(a, b, c, index, circle);
+    if (!endpoint_circle_two_points(a, b, c, circle)) boost_formation.pps(a, b, c, index, circle);
   }
   void sss(const Site& a, const Site& b, const Site& c, Circle& circle) { boost_formation.sss(a, b, c, circle); }
   void pss(const Site& a, const Site& b, const Site& c, int index, Circle& circle) {
