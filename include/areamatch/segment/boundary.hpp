@@ -25,8 +25,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <set>
-#include <unordered_map>
 #include <utility>
 #include <vector>
 
@@ -290,36 +288,42 @@ inline bool segments_conflict(const LatticePoint& a, const LatticePoint& b, cons
 /// to be compatible).
 inline std::vector<std::size_t> find_conflicts(const std::vector<LatticeSegment>& segments,
                                                const std::vector<bool>* fresh = nullptr) {
-  constexpr int bucket = 32;
-  std::unordered_map<long long, std::vector<std::size_t>> buckets;
+  constexpr int bucket = 16;
+  // (bucket, segment) for every bucket a segment's box touches, sorted: each bucket's segments
+  // are then one contiguous group (a sort instead of a hash map of vectors: no allocation per
+  // bucket). Two segments that touch share the bucket of the point where they do.
+  std::vector<std::pair<long long, std::uint32_t>> entries;
+  entries.reserve(2 * segments.size());
+  std::vector<std::uint8_t> bad(segments.size(), 0);
   auto key = [](long long bx, long long by) { return (bx << 32) ^ (by & 0xffffffffLL); };
-  std::set<std::size_t> bad;
   for (std::size_t i = 0; i < segments.size(); ++i) {
     const auto& s = segments[i];
-    if (s.low() == s.high()) bad.insert(i);
+    if (s.low() == s.high()) bad[i] = 1;
     const int x0 = std::min(s.low().x(), s.high().x()), x1 = std::max(s.low().x(), s.high().x());
     const int y0 = std::min(s.low().y(), s.high().y()), y1 = std::max(s.low().y(), s.high().y());
     for (long long bx = (x0 >= 0 ? x0 / bucket : -1); bx <= x1 / bucket; ++bx)
-      for (long long by = (y0 >= 0 ? y0 / bucket : -1); by <= y1 / bucket; ++by) buckets[key(bx, by)].push_back(i);
+      for (long long by = (y0 >= 0 ? y0 / bucket : -1); by <= y1 / bucket; ++by)
+        entries.emplace_back(key(bx, by), static_cast<std::uint32_t>(i));
   }
+  std::sort(entries.begin(), entries.end());
   auto point = [](const boost::polygon::point_data<int>& p) { return LatticePoint{p.x(), p.y()}; };
-  std::vector<std::pair<long long, const std::vector<std::size_t>*>> ordered;
-  for (const auto& [k, list] : buckets) ordered.push_back({k, &list});
-  std::sort(ordered.begin(), ordered.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
-  for (const auto& [k, list_ptr] : ordered) {
-    const auto& list = *list_ptr;
-    for (std::size_t i = 0; i < list.size(); ++i)
-      for (std::size_t j = i + 1; j < list.size(); ++j) {
-        if (fresh && !(*fresh)[list[i]] && !(*fresh)[list[j]]) continue;
-        const auto& s = segments[list[i]];
-        const auto& t = segments[list[j]];
-        if (segments_conflict(point(s.low()), point(s.high()), point(t.low()), point(t.high()))) {
-          bad.insert(list[i]);
-          bad.insert(list[j]);
-        }
+  for (std::size_t group = 0; group < entries.size();) {
+    std::size_t end = group;
+    while (end < entries.size() && entries[end].first == entries[group].first) ++end;
+    for (std::size_t i = group; i < end; ++i)
+      for (std::size_t j = i + 1; j < end; ++j) {
+        const std::uint32_t a = entries[i].second, b = entries[j].second;
+        if (fresh && !(*fresh)[a] && !(*fresh)[b]) continue;
+        const auto& s = segments[a];
+        const auto& t = segments[b];
+        if (segments_conflict(point(s.low()), point(s.high()), point(t.low()), point(t.high()))) bad[a] = bad[b] = 1;
       }
+    group = end;
   }
-  return {bad.begin(), bad.end()};
+  std::vector<std::size_t> conflicting;
+  for (std::size_t i = 0; i < segments.size(); ++i)
+    if (bad[i]) conflicting.push_back(i);
+  return conflicting;
 }
 
 }  // namespace detail
