@@ -1,7 +1,11 @@
 // Segmentation speed: every map of ../shared/maps (when present) and synthetic buildings from
-// 10 m to 200 m square at 0.05 m. Maps are loaded once; only segmentation is timed.
+// 10 m to 200 m square at 0.05 m. Maps are loaded once; only segmentation is timed. For the
+// shared maps also the Voronoi builder alone on the traced boundary, ours (`voronoi/`, with the
+// corner circle events of detail/voronoi_circles.hpp) and Boost.Polygon's `construct_voronoi`
+// (`voronoi_boost/`).
 //   build/benchmarks/bench_segmentation --benchmark_out=segmentation.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
+#include <areamatch/detail/voronoi_circles.hpp>
 #include <areamatch/io.hpp>
 
 #include <benchmark/benchmark.h>
@@ -9,6 +13,7 @@
 #include <dirent.h>
 
 #include <algorithm>
+#include <memory>
 #include <string>
 #include <vector>
 
@@ -24,6 +29,25 @@ void segment_map(benchmark::State& state, const areamatch::OccupancyGrid& grid) 
   }
   state.counters["areas"] = static_cast<double>(areas);
   state.counters["cells"] = static_cast<double>(grid.width()) * grid.height();
+}
+
+/// The segmenter's Voronoi input for `grid` (default parameters).
+areamatch::BoundarySegments voronoi_input(const areamatch::OccupancyGrid& grid) {
+  const areamatch::VoronoiSegmenter::Params params;
+  return areamatch::trace_boundary(areamatch::binarize(grid, params.binarize), grid.resolution(), params.boundary);
+}
+
+template <class Build>
+void build_voronoi(benchmark::State& state, const areamatch::BoundarySegments& input, Build&& build) {
+  std::size_t vertices = 0;
+  for (auto _ : state) {
+    boost::polygon::voronoi_diagram<double> diagram;
+    build(input.segments, &diagram);
+    vertices = diagram.vertices().size();
+    benchmark::DoNotOptimize(vertices);
+  }
+  state.counters["segments"] = static_cast<double>(input.segments.size());
+  state.counters["vertices"] = static_cast<double>(vertices);
 }
 
 void register_synthetic() {
@@ -51,9 +75,18 @@ void register_shared_maps() {
   std::sort(names.begin(), names.end());
   for (const auto& name : names) {
     auto grid = std::make_shared<areamatch::OccupancyGrid>(areamatch::load_map(folder + "/" + name));
-    benchmark::RegisterBenchmark(("segment/" + name.substr(0, name.size() - 5)).c_str(),
-                                 [grid](benchmark::State& state) { segment_map(state, *grid); })
+    const std::string map = name.substr(0, name.size() - 5);
+    benchmark::RegisterBenchmark(("segment/" + map).c_str(), [grid](benchmark::State& state) { segment_map(state, *grid); })
         ->Unit(benchmark::kMillisecond);
+    auto input = std::make_shared<areamatch::BoundarySegments>(voronoi_input(*grid));
+    using Segments = std::vector<areamatch::LatticeSegment>;
+    using Diagram = boost::polygon::voronoi_diagram<double>;
+    benchmark::RegisterBenchmark(("voronoi/" + map).c_str(), [input](benchmark::State& state) {
+      build_voronoi(state, *input, [](const Segments& s, Diagram* d) { areamatch::detail::construct_segment_voronoi(s.begin(), s.end(), d); });
+    })->Unit(benchmark::kMillisecond);
+    benchmark::RegisterBenchmark(("voronoi_boost/" + map).c_str(), [input](benchmark::State& state) {
+      build_voronoi(state, *input, [](const Segments& s, Diagram* d) { boost::polygon::construct_voronoi(s.begin(), s.end(), d); });
+    })->Unit(benchmark::kMillisecond);
   }
 }
 

@@ -21,7 +21,7 @@ def load(paths):
                 continue
             scale = {"ns": 1e-6, "us": 1e-3, "ms": 1.0, "s": 1e3}[b.get("time_unit", "ns")]
             name = b.get("run_name", b["name"])
-            counters = {k: v for k, v in b.items() if k.endswith("_ms") or k in ("areas", "cells", "hypotheses")}
+            counters = {k: v for k, v in b.items() if k.endswith("_ms") or k in ("areas", "cells", "hypotheses", "segments", "vertices")}
             rows.append({"name": name, "real_ms": b["real_time"] * scale, "iterations": b["iterations"], **counters})
     return rows, context
 
@@ -96,6 +96,15 @@ def write_markdown(rows, path):
     for r in rows:
         if r["name"].startswith("segment/"):
             out.append(f'| {r["name"][8:]} | {int(r.get("cells", 0))} | {int(r.get("areas", 0))} | {r["real_ms"]:.1f} |')
+    builds = [r for r in rows if r["name"].startswith("voronoi/")]
+    if builds:
+        out += ["", "## Voronoi builder (the segmenter's input, already traced)", "",
+                "| map | segments | ours ms | Boost's construct_voronoi ms |", "|---|---:|---:|---:|"]
+        for r in builds:
+            name = r["name"][8:]
+            boost = by_name.get("voronoi_boost/" + name)
+            out.append(f'| {name} | {int(r.get("segments", 0))} | {r["real_ms"]:.1f} | '
+                       + (f'{boost["real_ms"]:.1f} |' if boost else "– |"))
     out += ["", "## Matching", "",
             "| pair | areas | hypotheses | match ms | features | hypotheses | clustering | selection | whole pair ms |",
             "|---|---:|---:|---:|---:|---:|---:|---:|---:|"]
