@@ -35,6 +35,14 @@
 namespace areamatch::detail {
 
 namespace bpd = boost::polygon::detail;
+/// Boost.Polygon's default predicates for int32 input, which the functors below fall back to.
+using BoostVoronoiPredicates = bpd::voronoi_predicates<bpd::voronoi_ctype_traits<bpd::int32>>;
+
+/// Whether `p` is one of the end points of segment site `segment`.
+template <class Site, class Point>
+bool ends_at(const Site& segment, const Point& p) {
+  return p == segment.point0() || p == segment.point1();
+}
 
 /// The circle centred at p + k·normal with radius |k|·|normal| (p, normal integers), as a
 /// Boost circle event (centre, and the sweep position centre.x + radius), if its rounding error
@@ -76,8 +84,8 @@ bool small_coordinates(std::initializer_list<Point> points) {
 template <class Site, class Circle>
 bool endpoint_circle(const Site& point, const Site& segment1, const Site& segment2, Circle& circle) {
   const auto& p = point.point0();
-  const bool on1 = p == segment1.point0() || p == segment1.point1();
-  const bool on2 = p == segment2.point0() || p == segment2.point1();
+  const bool on1 = ends_at(segment1, p);
+  const bool on2 = ends_at(segment2, p);
   if (!on1 && !on2) return false;
   const double px = p.x(), py = p.y();
   if (on1 && on2) {  // both segments end at p: the circle is p itself
@@ -116,8 +124,8 @@ template <class Site, class Circle>
 bool endpoint_circle_two_points(const Site& point1, const Site& point2, const Site& segment, Circle& circle) {
   const auto& a = point1.point0();
   const auto& b = point2.point0();
-  const bool a_on = a == segment.point0() || a == segment.point1();
-  const bool b_on = b == segment.point0() || b == segment.point1();
+  const bool a_on = ends_at(segment, a);
+  const bool b_on = ends_at(segment, b);
   if (a_on == b_on) return false;
   if (!small_coordinates({a, b, segment.point0(), segment.point1()})) return false;
   const auto& e = a_on ? a : b;
@@ -137,8 +145,7 @@ bool endpoint_circle_two_points(const Site& point1, const Site& point2, const Si
 /// (pps) tried first.
 template <class Site, class Circle>
 struct EndpointCircleFormation {
-  using ctype_traits = bpd::voronoi_ctype_traits<bpd::int32>;
-  typename bpd::voronoi_predicates<ctype_traits>::template lazy_circle_formation_functor<Site, Circle> boost_formation;
+  typename BoostVoronoiPredicates::template lazy_circle_formation_functor<Site, Circle> boost_formation;
 
   void ppp(const Site& a, const Site& b, const Site& c, Circle& circle) { boost_formation.ppp(a, b, c, circle); }
   void pps(const Site& a, const Site& b, const Site& c, int index, Circle& circle) {
@@ -151,13 +158,10 @@ struct EndpointCircleFormation {
 };
 
 /// Boost's predicates with `EndpointCircleFormation` as the circle formation functor.
-struct EndpointCirclePredicates : bpd::voronoi_predicates<bpd::voronoi_ctype_traits<bpd::int32>> {
-  using boost_predicates = bpd::voronoi_predicates<bpd::voronoi_ctype_traits<bpd::int32>>;
+struct EndpointCirclePredicates : BoostVoronoiPredicates {
   template <class Site, class Circle>
-  using circle_formation_predicate =
-      typename boost_predicates::template circle_formation_predicate<Site, Circle,
-                                                                     typename boost_predicates::template circle_existence_predicate<Site>,
-                                                                     EndpointCircleFormation<Site, Circle>>;
+  using circle_formation_predicate = typename BoostVoronoiPredicates::template circle_formation_predicate<
+      Site, Circle, typename BoostVoronoiPredicates::template circle_existence_predicate<Site>, EndpointCircleFormation<Site, Circle>>;
 };
 
 /// `boost::polygon::construct_voronoi` for segments, with the faster circle events.

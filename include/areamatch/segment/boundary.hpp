@@ -284,7 +284,7 @@ inline bool segments_conflict(const LatticePoint& a, const LatticePoint& b, cons
 }
 
 /// Indices of segments that break Boost.Polygon's input contract with some other segment
-/// (spatial hashing, so near-linear in the number of segments). Zero-length segments count too.
+/// (16-cell grid buckets, so near-linear in the number of segments). Zero-length segments count too.
 /// With `fresh`, only pairs with at least one fresh segment are tested (the others are known
 /// to be compatible).
 inline std::vector<std::size_t> find_conflicts(const std::vector<LatticeSegment>& segments,
