@@ -224,6 +224,82 @@ TEST_CASE("corner circle events agree with Boost's own (exact when needed) compu
   CHECK(point_point_segment > 10000);
 }
 
+namespace {
+
+/// Counts of the circle events one diagram construction compared, and the worst difference.
+struct CircleComparison {
+  int point_segment_segment = 0, three_segments = 0, over_64_ulps = 0;
+  double worst_ulps = 0.0;
+  void record(double ours_x, double ours_y, double ours_lower, double x, double y, double lower) {
+    auto ulps = [](double mine, double theirs) {
+      return mine == theirs ? 0.0 : std::abs(mine - theirs) / (std::abs(theirs) * std::numeric_limits<double>::epsilon());
+    };
+    const double u = std::max({ulps(ours_x, x), ulps(ours_y, y), ulps(ours_lower, lower)});
+    worst_ulps = std::max(worst_ulps, u);
+    over_64_ulps += u > 64.0;
+  }
+};
+CircleComparison* circle_comparison = nullptr;  // the test below sets it around one construction
+
+/// Boost's circle formation, and ours alongside wherever it applies, recorded in `circle_comparison`.
+template <class Site, class Circle>
+struct ComparingFormation {
+  detail::BoostVoronoiPredicates::lazy_circle_formation_functor<Site, Circle> boost_formation;
+  void ppp(const Site& a, const Site& b, const Site& c, Circle& circle) { boost_formation.ppp(a, b, c, circle); }
+  void pps(const Site& a, const Site& b, const Site& c, int index, Circle& circle) { boost_formation.pps(a, b, c, index, circle); }
+  void pss(const Site& a, const Site& b, const Site& c, int index, Circle& circle) {
+    boost_formation.pss(a, b, c, index, circle);
+    Circle mine;
+    if (detail::point_segment_segment_circle(a, b, c, index, mine)) {
+      ++circle_comparison->point_segment_segment;
+      circle_comparison->record(mine.x(), mine.y(), mine.lower_x(), circle.x(), circle.y(), circle.lower_x());
+    }
+  }
+  void sss(const Site& a, const Site& b, const Site& c, Circle& circle) {
+    boost_formation.sss(a, b, c, circle);
+    Circle mine;
+    if (detail::three_segment_circle(a, b, c, mine)) {
+      ++circle_comparison->three_segments;
+      circle_comparison->record(mine.x(), mine.y(), mine.lower_x(), circle.x(), circle.y(), circle.lower_x());
+    }
+  }
+};
+struct ComparingPredicates : detail::BoostVoronoiPredicates {
+  template <class Site, class Circle>
+  using circle_formation_predicate = detail::BoostVoronoiPredicates::circle_formation_predicate<
+      Site, Circle, detail::BoostVoronoiPredicates::circle_existence_predicate<Site>, ComparingFormation<Site, Circle>>;
+};
+
+}  // namespace
+
+TEST_CASE("general circle events agree with Boost's own (exact when needed) on robot maps") {
+  // detail::point_segment_segment_circle and three_segment_circle replace Boost's circle events
+  // for any point-segment-segment and segment-segment-segment circle whose error bound allows;
+  // compared here on every such event that turned, noisy, cluttered robot maps raise.
+  CircleComparison comparison;
+  circle_comparison = &comparison;
+  for (std::uint64_t seed = 1; seed <= 6; ++seed) {
+    RobotMapParams rp;
+    rp.rotation_rad = 0.37 * seed;
+    rp.wall_noise_m = 0.03;
+    rp.max_clutter_per_room = 3;
+    rp.speckle_per_m2 = 0.05;
+    const auto robot = make_robot_map(generate_building(BuildingParams{}, seed), rp, seed);
+    const BoundarySegments boundary = trace_boundary(binarize(robot.grid), robot.grid.resolution(), BoundaryParams{});
+    boost::polygon::voronoi_builder<int, boost::polygon::detail::voronoi_ctype_traits<int>, ComparingPredicates> builder;
+    boost::polygon::insert(boundary.segments.begin(), boundary.segments.end(), &builder);
+    boost::polygon::voronoi_diagram<double> diagram;
+    builder.construct(&diagram);
+  }
+  circle_comparison = nullptr;
+  MESSAGE("circles compared: " << comparison.point_segment_segment << " point-segment-segment, "
+                               << comparison.three_segments << " segment-segment-segment; worst "
+                               << comparison.worst_ulps << " ulps");
+  CHECK(comparison.over_64_ulps == 0);
+  CHECK(comparison.point_segment_segment > 1000);
+  CHECK(comparison.three_segments > 1000);
+}
+
 TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram") {
   // The same edges as boost::polygon::construct_voronoi on wall outlines (random rooms with
   // blobs): each edge as its two sites and its end points to a micro-cell. The order may differ

@@ -1,20 +1,23 @@
 #pragma once
 /// \file detail/voronoi_circles.hpp
-/// Boost.Polygon's segment Voronoi builder with faster circle events for the commonest cases of
-/// wall outlines: a point site that is an endpoint of one of the segment sites involved.
+/// Boost.Polygon's segment Voronoi builder with faster circle events for wall outlines.
 ///
 /// Boost computes the circle through a point and tangent to two segments ("pss") from the
 /// intersection of the two segment lines, and the circle through two points tangent to a segment
 /// ("pps") from the points' bisector. When a point lies on a segment's line both formulas cancel
 /// heavily (a short wall piece far from the origin), their error estimate exceeds the 64 ulps
 /// Boost accepts, and the event is recomputed in multiprecision: on the shared maps all such pss
-/// events and a third of the pps ones were, about half of `construct_voronoi`'s time. Here the
-/// same circles are computed from that point directly, with a rounding-error bound; if the bound
-/// is above `max_ulps` (or the case does not apply) Boost's own computation runs as before. The
-/// diagram is Boost's (tests compare the edges), only events that tie within Boost's tolerance
-/// may come out in another order.
+/// events and a third of the pps ones were, about half of `construct_voronoi`'s time. Here:
+/// - a point that ends one of the segments (`endpoint_circle`, `endpoint_circle_two_points`):
+///   the circle from that point directly, with a rounding-error bound derived by hand;
+/// - any other pss (`point_segment_segment_circle`) and three segments
+///   (`three_segment_circle`): Boost's formulas, but relative to a nearby site, with the
+///   cancelling root taken in its conjugate form and the rounding tracked by `ErrorBounded`.
+/// If a bound is above `max_ulps` (or the case does not apply) Boost's own computation runs as
+/// before. The diagram is Boost's (tests compare the edges, and every circle on robot maps), only
+/// events that tie within Boost's tolerance may come out in another order.
 ///
-/// Geometry of pss, in Boost's orientation (segment 1 runs from site2's point1 to point0, segment 2
+/// Geometry of `endpoint_circle` (pss), in Boost's orientation (segment 1 runs from site2's point1 to point0, segment 2
 /// from site3's point0 to point1; d1, d2 their directions): the circle's centre c lies on the
 /// bisector where the signed distances to the two lines cancel, L1(c) + L2(c) = 0. With the
 /// point p on line 1 (L1(p) = 0) the circle touches line 1 at p, so c = p + s·n1 with n1 the
@@ -31,6 +34,7 @@
 #include <cstdint>
 #include <cstdlib>
 #include <initializer_list>
+#include <limits>
 
 namespace areamatch::detail {
 
@@ -115,6 +119,145 @@ bool endpoint_circle(const Site& point, const Site& segment1, const Site& segmen
                             std::sqrt(length2_sq), circle);
 }
 
+/// A double with a bound on its absolute error, carried through + − × ÷ √ (each adds one
+/// rounding, counted as epsilon·|result|: twice the round-to-nearest bound). Boost's
+/// `robust_fpt` carries relative errors, which overstate a small, rounded term that is then added
+/// to a large exact one — the case of circles computed relative to a nearby site below.
+struct ErrorBounded {
+  double value = 0.0;
+  double error = 0.0;
+
+  static constexpr double epsilon = std::numeric_limits<double>::epsilon();
+  /// An integer (exact up to 2^53).
+  static ErrorBounded of(long long v) {
+    const double d = static_cast<double>(v);
+    return {d, std::llabs(v) < (1LL << 53) ? 0.0 : std::abs(d) * epsilon};
+  }
+  static ErrorBounded rounded(double v, double error) { return {v, error + std::abs(v) * epsilon}; }
+  ErrorBounded operator-() const { return {-value, error}; }
+  friend ErrorBounded operator+(ErrorBounded a, ErrorBounded b) { return rounded(a.value + b.value, a.error + b.error); }
+  friend ErrorBounded operator-(ErrorBounded a, ErrorBounded b) { return rounded(a.value - b.value, a.error + b.error); }
+  friend ErrorBounded operator*(ErrorBounded a, ErrorBounded b) {
+    return rounded(a.value * b.value, std::abs(a.value) * b.error + std::abs(b.value) * a.error + a.error * b.error);
+  }
+  /// Callers check `divisor_safe()` first.
+  friend ErrorBounded operator/(ErrorBounded a, ErrorBounded b) {
+    const double q = a.value / b.value;
+    return rounded(q, (a.error + std::abs(q) * b.error) / (std::abs(b.value) - b.error));
+  }
+  bool divisor_safe() const { return std::abs(value) > 2.0 * error; }
+  ErrorBounded abs() const { return {std::abs(value), error}; }
+  /// Of a value known to be ≥ 0 (callers check `value - error >= 0`).
+  ErrorBounded sqrt() const {
+    const double root = std::sqrt(value);
+    return rounded(root, error / (root + std::sqrt(std::max(value - error, 0.0))));
+  }
+  bool within_ulps(double ulps) const { return error <= ulps * epsilon * std::abs(value); }
+};
+
+/// The circle through point site `point` tangent to segment sites `segment1`, `segment2` (Boost's
+/// pss roles) for non-parallel segments, as Boost's lazy formula computes it but relative to the
+/// point: with q = 0 at the point, the lines' intersection I, the bisector u = d1·|d2| + d2·|d1|
+/// (Boost's d1, d2) and A = |d1||d2| + d1·d2, the centre is I + t·u with
+/// A²t² + 2(u·I)t + |I|² = 0. Boost takes t = (−u·I ± √det) / A² (det = 2·A·or1·or2 from exact
+/// cross products, sign by `point_index`); where those two terms would cancel, the same root is
+/// |I|² / (−u·I ∓ √det). The point's coordinates are added last, exactly. Boost's formula in
+/// absolute coordinates cancels when the point is near the lines' intersection (wall corners,
+/// two walls a pixel apart), which sent such events to multiprecision. Returns false when the
+/// case does not apply or the result is not provably within `max_ulps`.
+template <class Site, class Circle>
+bool point_segment_segment_circle(const Site& point, const Site& segment1, const Site& segment2, int point_index,
+                                  Circle& circle) {
+  const auto& p = point.point0();
+  // Boost's orientation: segment 1 from point1 to point0, segment 2 from point0 to point1.
+  const auto& start1 = segment1.point1();
+  const auto& end1 = segment1.point0();
+  const auto& start2 = segment2.point0();
+  const auto& end2 = segment2.point1();
+  if (!small_coordinates({p, start1, end1, start2, end2})) return false;
+  using ll = long long;
+  using E = ErrorBounded;
+  const ll e1x = ll{end1.x()} - p.x(), e1y = ll{end1.y()} - p.y();
+  const ll e2x = ll{end2.x()} - p.x(), e2y = ll{end2.y()} - p.y();
+  const ll a1 = ll{end1.x()} - start1.x(), b1 = ll{end1.y()} - start1.y();
+  const ll a2 = ll{end2.x()} - start2.x(), b2 = ll{end2.y()} - start2.y();
+  const ll orientation = b1 * a2 - a1 * b2;
+  if (orientation == 0) return false;  // parallel: Boost's own case
+  const E length1 = E::of(a1 * a1 + b1 * b1).sqrt(), length2 = E::of(a2 * a2 + b2 * b2).sqrt();
+  const ll dot = a1 * a2 + b1 * b2;
+  const E lengths = length1 * length2;
+  // A without cancellation: for d1·d2 < 0, |d1||d2| + d1·d2 = cross² / (|d1||d2| − d1·d2).
+  const E A = dot >= 0 ? E::of(dot) + lengths : E::of(orientation) * E::of(orientation) / (lengths - E::of(dot));
+  // Cross products of each direction with its end point (relative to the point): exact.
+  const ll or1 = b1 * e1x - a1 * e1y;
+  const ll or2 = a2 * e2y - b2 * e2x;
+  const E det = E{2.0, 0.0} * A * E::of(or1) * E::of(or2);
+  if (!(det.value - det.error >= 0.0)) return false;
+  const E root = det.sqrt();
+  const E ix = (E::of(a2) * E::of(or1) + E::of(a1) * E::of(or2)) / E::of(orientation);
+  const E iy = (E::of(b1) * E::of(or2) + E::of(b2) * E::of(or1)) / E::of(orientation);
+  const E ux = E::of(a1) * length2 + E::of(a2) * length1;
+  const E uy = E::of(b1) * length2 + E::of(b2) * length1;
+  const E w = -(ix * ux + iy * uy);
+  const bool plus = point_index == 2;
+  E t;
+  if ((w.value >= 0.0) == plus) {
+    t = (plus ? w + root : w - root) / (A * A);
+  } else {
+    const E conjugate = plus ? w - root : w + root;
+    if (!conjugate.divisor_safe()) return false;
+    t = (ix * ix + iy * iy) / conjugate;
+  }
+  const E cx = E::of(p.x()) + (ix + t * ux);
+  const E cy = E::of(p.y()) + (iy + t * uy);
+  const E lower_x = cx + t.abs() * E::of(std::llabs(orientation));
+  constexpr double max_ulps = 32.0;  // within half of Boost's 64, as above
+  if (!cx.within_ulps(max_ulps) || !cy.within_ulps(max_ulps) || !lower_x.within_ulps(max_ulps)) return false;
+  circle = Circle(cx.value, cy.value, lower_x.value);
+  return true;
+}
+
+/// The circle tangent to segment sites `site1`, `site2`, `site3` (Boost's sss), by Boost's lazy
+/// formula (the centre and radius as ratios of sums over the three lines, each line as
+/// a·y − b·x = c), but with coordinates relative to an end point of the middle segment, so the
+/// lines' constants c are small and the sums cancel far less; the origin is added back last.
+/// Returns false when the result is not provably within `max_ulps`.
+template <class Site, class Circle>
+bool three_segment_circle(const Site& site1, const Site& site2, const Site& site3, Circle& circle) {
+  if (!small_coordinates({site1.point0(), site1.point1(), site2.point0(), site2.point1(), site3.point0(), site3.point1()}))
+    return false;
+  using ll = long long;
+  using E = ErrorBounded;
+  const ll ox = site2.x0(), oy = site2.y0();
+  struct Line {
+    ll a, b, c;
+    E length;
+  };
+  auto line = [&](const Site& s) {
+    const ll x0 = ll{s.x0()} - ox, y0 = ll{s.y0()} - oy, x1 = ll{s.x1()} - ox, y1 = ll{s.y1()} - oy;
+    const ll a = x1 - x0, b = y1 - y0;
+    return Line{a, b, x0 * y1 - y0 * x1, E::of(a * a + b * b).sqrt()};
+  };
+  const Line l1 = line(site1), l2 = line(site2), l3 = line(site3);
+  const ll cross12 = l1.a * l2.b - l1.b * l2.a, cross23 = l2.a * l3.b - l2.b * l3.a, cross31 = l3.a * l1.b - l3.b * l1.a;
+  const E denom = E::of(cross12) * l3.length + E::of(cross23) * l1.length + E::of(cross31) * l2.length;
+  if (!denom.divisor_safe()) return false;
+  const E r = -(E::of(cross12) * E::of(l3.c) + E::of(cross23) * E::of(l1.c) + E::of(cross31) * E::of(l2.c));
+  // a_i·c_j − a_j·c_i in the frame: products up to 2^82, so as bounded doubles.
+  auto pair_term = [](ll ai, ll cj, ll aj, ll ci) { return E::of(ai) * E::of(cj) - E::of(aj) * E::of(ci); };
+  const E cx = pair_term(l1.a, l2.c, l2.a, l1.c) * l3.length + pair_term(l2.a, l3.c, l3.a, l2.c) * l1.length +
+               pair_term(l3.a, l1.c, l1.a, l3.c) * l2.length;
+  const E cy = pair_term(l1.b, l2.c, l2.b, l1.c) * l3.length + pair_term(l2.b, l3.c, l3.b, l2.c) * l1.length +
+               pair_term(l3.b, l1.c, l1.b, l3.c) * l2.length;
+  const E centre_x = E::of(ox) + cx / denom;
+  const E centre_y = E::of(oy) + cy / denom;
+  const E lower_x = E::of(ox) + (cx + r) / denom;
+  constexpr double max_ulps = 32.0;
+  if (!centre_x.within_ulps(max_ulps) || !centre_y.within_ulps(max_ulps) || !lower_x.within_ulps(max_ulps)) return false;
+  circle = Circle(centre_x.value, centre_y.value, lower_x.value);
+  return true;
+}
+
 /// The circle through point sites `point1`, `point2` tangent to segment site `segment` (Boost's
 /// pps roles), when one of the points is an endpoint of the segment: the circle touches the
 /// segment's line there, so its centre is e + k·perp(d) with e that endpoint, d the segment's
@@ -151,9 +294,11 @@ struct EndpointCircleFormation {
   void pps(const Site& a, const Site& b, const Site& c, int index, Circle& circle) {
     if (!endpoint_circle_two_points(a, b, c, circle)) boost_formation.pps(a, b, c, index, circle);
   }
-  void sss(const Site& a, const Site& b, const Site& c, Circle& circle) { boost_formation.sss(a, b, c, circle); }
+  void sss(const Site& a, const Site& b, const Site& c, Circle& circle) {
+    if (!three_segment_circle(a, b, c, circle)) boost_formation.sss(a, b, c, circle);
+  }
   void pss(const Site& a, const Site& b, const Site& c, int index, Circle& circle) {
-    if (!endpoint_circle(a, b, c, circle)) boost_formation.pss(a, b, c, index, circle);
+    if (!endpoint_circle(a, b, c, circle) && !point_segment_segment_circle(a, b, c, index, circle)) boost_formation.pss(a, b, c, index, circle);
   }
 };
 
