@@ -58,34 +58,57 @@ struct RoomParams {
 };
 
 /// The skeleton flattened to a graph of samples: node samples first (index = node id), then the
-/// inner samples of every kept branch.
+/// inner samples of every kept branch. Adjacency is stored compactly (one list for all samples,
+/// each sample's neighbours in the order their links were made): a furnished map has ~10^5
+/// samples, and a vector per sample cost more than the rest of room detection.
 struct SampleGraph {
   std::vector<SkeletonSample> samples;
-  std::vector<std::vector<int>> neighbours;
+
+  /// A sample's neighbours, as a range of sample ids.
+  struct Neighbours {
+    const int* first;
+    const int* last;
+    const int* begin() const { return first; }
+    const int* end() const { return last; }
+    std::size_t size() const { return static_cast<std::size_t>(last - first); }
+  };
+  Neighbours neighbours(int s) const {
+    return {neighbour_ids.data() + neighbour_start[s], neighbour_ids.data() + neighbour_start[s + 1]};
+  }
 
   static SampleGraph from(const Skeleton& skeleton) {
     SampleGraph g;
+    g.samples.reserve(skeleton.nodes.size());
     for (const auto& node : skeleton.nodes) g.samples.push_back(node.sample);
-    g.neighbours.resize(g.samples.size());
-    auto link = [&g](int a, int b) {
-      g.neighbours[a].push_back(b);
-      g.neighbours[b].push_back(a);
-    };
+    // Links in order: (node or inner sample, next inner sample or node) along every kept branch.
+    std::vector<std::pair<int, int>> links;
     for (const auto& branch : skeleton.branches) {
       if (branch.removed) continue;
       int previous = branch.from;
       for (std::size_t i = 1; i + 1 < branch.samples.size(); ++i) {
         const int id = static_cast<int>(g.samples.size());
         g.samples.push_back(branch.samples[i]);
-        g.neighbours.emplace_back();
-        link(previous, id);
+        links.emplace_back(previous, id);
         previous = id;
       }
-      link(previous, branch.to);
+      links.emplace_back(previous, branch.to);
+    }
+    g.neighbour_start.assign(g.samples.size() + 1, 0);
+    for (const auto& [a, b] : links) ++g.neighbour_start[a + 1], ++g.neighbour_start[b + 1];
+    for (std::size_t s = 1; s < g.neighbour_start.size(); ++s) g.neighbour_start[s] += g.neighbour_start[s - 1];
+    g.neighbour_ids.resize(2 * links.size());
+    std::vector<int> filled(g.neighbour_start.begin(), g.neighbour_start.end() - 1);
+    for (const auto& [a, b] : links) {
+      g.neighbour_ids[filled[a]++] = b;
+      g.neighbour_ids[filled[b]++] = a;
     }
     return g;
   }
   double distance(int a, int b) const { return (samples[a].position - samples[b].position).norm(); }
+
+ private:
+  std::vector<int> neighbour_start;  ///< sample s's neighbours are neighbour_ids[start[s], start[s + 1])
+  std::vector<int> neighbour_ids;
 };
 
 /// A passage found on the skeleton: a door (at the clearance minimum of a narrow stretch) or one
@@ -124,7 +147,7 @@ std::vector<int> components(const SampleGraph& g, Member&& member, int& count) {
     while (!stack.empty()) {
       const int u = stack.back();
       stack.pop_back();
-      for (int v : g.neighbours[u])
+      for (int v : g.neighbours(u))
         if (comp[v] < 0 && member(v)) {
           comp[v] = count;
           stack.push_back(v);
@@ -198,7 +221,7 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
     if (c < 0) continue;
     members[c].push_back(static_cast<int>(s));
     int narrow_neighbours = 0;
-    for (int t : g.neighbours[s]) {
+    for (int t : g.neighbours(s)) {
       if (narrow[t] == c) {
         length[c] += 0.5 * g.distance(static_cast<int>(s), t);  // each edge seen from both ends
         ++narrow_neighbours;
@@ -218,7 +241,7 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
     double travelled = 0.0;
     while (travelled < limit) {
       int next = -1, options = 0;
-      for (int t : g.neighbours[current])
+      for (int t : g.neighbours(current))
         if (t != previous && narrow[t] == c) ++options, next = t;
       if (options != 1) break;
       travelled += g.distance(current, next);
@@ -298,11 +321,11 @@ inline void split_at_junctions(RoomDetection& out, const Skeleton& skeleton, dou
   for (std::size_t j = 0; j < skeleton.nodes.size(); ++j) {
     const int J = static_cast<int>(j);
     const int R = region[J];
-    if (R < 0 || g.neighbours[J].size() < 3) continue;
+    if (R < 0 || g.neighbours(J).size() < 3) continue;
     const Eigen::Vector2d centre = g.samples[J].position;
     const double r_junction = g.samples[J].clearance;
     std::vector<Arm> arms;
-    for (int first : g.neighbours[J]) {
+    for (int first : g.neighbours(J)) {
       const Eigen::Vector2d d = g.samples[first].position - centre;
       arms.push_back({first, std::atan2(d.y(), d.x())});
     }
@@ -316,7 +339,7 @@ inline void split_at_junctions(RoomDetection& out, const Skeleton& skeleton, dou
       while (!stack.empty()) {
         const int u = stack.back();
         stack.pop_back();
-        for (int v : g.neighbours[u])
+        for (int v : g.neighbours(u))
           if (v != J && component[v] < 0 && region[v] == R) component[v] = label, stack.push_back(v);
       }
     };
@@ -327,7 +350,7 @@ inline void split_at_junctions(RoomDetection& out, const Skeleton& skeleton, dou
       const int c = component[s];
       if (c < 0) continue;
       part_width[c] = std::max(part_width[c], g.samples[s].clearance);
-      for (int t : g.neighbours[s])
+      for (int t : g.neighbours(s))
         if (component[t] == c) part_length[c] += 0.5 * g.distance(static_cast<int>(s), t);
     }
     const double needed = std::max(arm_length, 2.5 * r_junction);
@@ -412,7 +435,7 @@ inline void split_at_junctions(RoomDetection& out, const Skeleton& skeleton, dou
   for (auto& p : out.passages) {
     if (p.junction) continue;
     std::vector<int> sides{region[p.sample]};
-    for (int n : g.neighbours[p.sample]) sides.push_back(region[n]);
+    for (int n : g.neighbours(p.sample)) sides.push_back(region[n]);
     std::sort(sides.begin(), sides.end());
     sides.erase(std::unique(sides.begin(), sides.end()), sides.end());
     if (sides.size() == 2) p.region_a = sides[0], p.region_b = sides[1];
