@@ -389,6 +389,23 @@ TEST_CASE("synthetic buildings: every room is one area, every door one passage n
   CHECK(doors_found == doors);
 }
 
+TEST_CASE("byte scans find the same first (un)equal byte as a plain loop") {
+  detail::Random random(8);
+  for (int trial = 0; trial < 2000; ++trial) {
+    const int n = random.integer(0, 70);
+    std::vector<std::uint8_t> row(static_cast<std::size_t>(n) + 1);
+    const bool long_runs = trial % 2 == 0;
+    for (auto& b : row) b = static_cast<std::uint8_t>(long_runs ? (random.chance(0.05) ? 1 : 0) : random.integer(0, 2));
+    const int from = random.integer(0, n), to = random.integer(from, n);
+    const auto value = static_cast<std::uint8_t>(random.integer(0, 2));
+    int equal = from, not_equal = from;
+    while (equal < to && row[equal] != value) ++equal;
+    while (not_equal < to && row[not_equal] == value) ++not_equal;
+    CHECK(detail::find_byte_equal(row.data(), from, to, value) == equal);
+    CHECK(detail::find_byte_not_equal(row.data(), from, to, value) == not_equal);
+  }
+}
+
 TEST_CASE("speckles: small blobs go by area, and by size with max_speckle_size_m") {
   // 0.1 m cells. A 4x4 blob (0.16 m^2, 0.4 m across), a 1x3 dot (0.03 m^2) and a free-standing
   // wall 20 cells long (0.2 m^2, 2 m across) in a room.

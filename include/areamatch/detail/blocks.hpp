@@ -5,6 +5,9 @@
 /// small function with `__restrict` parameters and called on fixed blocks by `in_blocks` needs
 /// neither. (Run scalar, the erosion of office_g took 20 ms instead of 2.)
 
+#include <cstdint>
+#include <cstring>
+
 namespace areamatch::detail {
 
 /// Cells per block: two 16-byte vectors of byte cells.
@@ -17,6 +20,46 @@ inline void in_blocks(int begin, int end, Kernel&& kernel) {
   int c = begin;
   for (; c + block_cells <= end; c += block_cells) kernel(c, block_cells);
   if (c < end) kernel(c, end - c);
+}
+
+/// Byte scans over rows of a mask, 8 bytes per step where the platform allows: maps are long
+/// runs of equal cells, and a byte-by-byte search was most of finding runs on large maps.
+#if defined(__GNUC__) && defined(__BYTE_ORDER__) && __BYTE_ORDER__ == __ORDER_LITTLE_ENDIAN__
+#define AREAMATCH_WORD_SCAN 1
+#endif
+
+/// The first index in [from, to) whose byte differs from `value`, or `to`.
+inline int find_byte_not_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
+  int c = from;
+#ifdef AREAMATCH_WORD_SCAN
+  const std::uint64_t pattern = 0x0101010101010101ULL * value;
+  for (; c + 8 <= to; c += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, row + c, 8);
+    const std::uint64_t differs = word ^ pattern;  // non-zero bytes where row != value
+    if (differs != 0) return c + __builtin_ctzll(differs) / 8;
+  }
+#endif
+  while (c < to && row[c] == value) ++c;
+  return c;
+}
+
+/// The first index in [from, to) whose byte equals `value`, or `to`.
+inline int find_byte_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
+  int c = from;
+#ifdef AREAMATCH_WORD_SCAN
+  const std::uint64_t pattern = 0x0101010101010101ULL * value;
+  for (; c + 8 <= to; c += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, row + c, 8);
+    const std::uint64_t x = word ^ pattern;  // zero bytes where row == value
+    // The lowest flagged byte is exactly the first zero byte (a borrow only flags bytes above one).
+    const std::uint64_t zero = (x - 0x0101010101010101ULL) & ~x & 0x8080808080808080ULL;
+    if (zero != 0) return c + __builtin_ctzll(zero) / 8;
+  }
+#endif
+  while (c < to && row[c] != value) ++c;
+  return c;
 }
 
 }  // namespace areamatch::detail

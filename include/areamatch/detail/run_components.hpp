@@ -2,6 +2,8 @@
 /// \file detail/run_components.hpp
 /// Connected components of a binary mask, computed on horizontal runs of cells.
 
+#include "blocks.hpp"
+
 #include <algorithm>
 #include <cstdint>
 #include <vector>
@@ -39,14 +41,9 @@ inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int w
   for (int r = 0; r < height; ++r) {
     out.row_start[r] = runs.size();
     const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * width];
-    int c = 0;
-    while (c < width) {
-      if (row[c] != value) {
-        ++c;
-        continue;
-      }
+    for (int c = find_byte_equal(row, 0, width, value); c < width; c = find_byte_equal(row, c, width, value)) {
       const int begin = c;
-      while (c < width && row[c] == value) ++c;
+      c = find_byte_not_equal(row, c, width, value);
       runs.push_back({r, begin, c});
     }
   }

@@ -85,8 +85,11 @@ inline FreeSpace binarize(const OccupancyGrid& grid, const BinarizeParams& param
   int min_c = grid.width(), max_c = -1, min_r = grid.height(), max_r = -1;
   for (int r = 0; r < grid.height(); ++r) {
     const CellState* row = &grid.cells()[grid.index(0, r)];
-    int first = 0;
-    while (first < grid.width() && !is_free(row[first])) ++first;
+    // Free is 0, or anything but 1 (occupied) when unknown counts as free.
+    static_assert(sizeof(CellState) == 1 && static_cast<int>(CellState::free) == 0 && static_cast<int>(CellState::occupied) == 1);
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(row);
+    const int first = params.unknown_is_free ? detail::find_byte_not_equal(bytes, 0, grid.width(), 1)
+                                             : detail::find_byte_equal(bytes, 0, grid.width(), 0);
     if (first == grid.width()) continue;
     int last = grid.width() - 1;
     while (!is_free(row[last])) --last;
