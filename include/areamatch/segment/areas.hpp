@@ -377,14 +377,22 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   detail::fill_uncontested_core(core, label, queue, W, H);
   grow(queue, false);
   queue.clear();
-  // The fringe starts from labelled cells next to unlabelled free space.
-  for (std::size_t i = 0; i < N; ++i) {
-    if (label[i] < 0) continue;
-    for (std::ptrdiff_t d : neighbour_offset) {
-      const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
-      if (label[j] == unlabelled && space.free[j]) {
-        queue.push_back(static_cast<std::uint32_t>(i));
-        break;
+  // The fringe starts from labelled cells next to unlabelled free space (labelled cells are
+  // free: only free runs are looked at).
+  for (int r = 0; r < H; ++r) {
+    const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
+    for (int c = detail::find_byte_equal(free_row, 0, W, 1); c < W; c = detail::find_byte_equal(free_row, c, W, 1)) {
+      const int end = detail::find_byte_not_equal(free_row, c, W, 1);
+      for (; c < end; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * W + c;
+        if (label[i] < 0) continue;
+        for (std::ptrdiff_t d : neighbour_offset) {
+          const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
+          if (label[j] == unlabelled && space.free[j]) {
+            queue.push_back(static_cast<std::uint32_t>(i));
+            break;
+          }
+        }
       }
     }
   }
@@ -420,8 +428,10 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   for (int r = 0; r < H; ++r) {
     row_start[r] = runs.size();
     const int* row = &label[static_cast<std::size_t>(r) * W];
+    const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
     int c = 0;
-    while (c < W) {
+    // Labelled cells are free: non-free stretches (label −1) are skipped.
+    while ((c = detail::find_byte_equal(free_row, c, W, 1)) < W) {
       const int l = row[c];
       int end = c + 1;
       while (end < W && row[end] == l) ++end;

@@ -177,19 +177,12 @@ inline TracedRings trace_rings(const FreeSpace& space) {
     in_blocks(1, W - 1, [&](int c, int count) {
       boundary_flags(&boundary_cell[c], row + c, row + c - 1, row + c + 1, row + c - W, row + c + W, count);
     });
-    for (int c = 1; c + 1 < W; ++c) {
-      if (!boundary_cell[c]) continue;
+    for (int c = find_byte_equal(boundary_cell.data(), 1, W - 1, 1); c + 1 < W;
+         c = find_byte_equal(boundary_cell.data(), c + 1, W - 1, 1)) {
       for (int k = 0; k < 4; ++k) tracer.trace_from(c, r, k, keep);
     }
   }
   return traced;
-}
-
-inline double distance_to_line(const LatticePoint& p, const LatticePoint& a, const LatticePoint& b) {
-  const double ux = b.x - a.x, uy = b.y - a.y;
-  const double length = std::hypot(ux, uy);
-  if (length == 0.0) return std::hypot(p.x - a.x, p.y - a.y);
-  return std::abs(ux * (p.y - a.y) - uy * (p.x - a.x)) / length;
 }
 
 /// Douglas–Peucker on the stretch of a closed ring from corner `from`, `steps` corners long (its
@@ -205,12 +198,19 @@ inline void refine_span(const std::vector<LatticePoint>& ring, std::size_t from,
     stack.pop_back();
     if (length < 2) continue;
     const std::size_t end = (start + length) % n;
-    double worst = -1.0;
+    // The farthest corner from the chord a→b: by |cross(b − a, p − a)| (exact integers), divided
+    // by the chord's length once; a closed chord (a = b) measures the distance to a.
+    const LatticePoint& a = ring[start];
+    const double ux = ring[end].x - a.x, uy = ring[end].y - a.y;
+    const double chord = std::hypot(ux, uy);
+    double worst_measure = -1.0;
     std::size_t worst_step = 0;
     for (std::size_t s = 1; s < length; ++s) {
-      const double d = distance_to_line(ring[(start + s) % n], ring[start], ring[end]);
-      if (d > worst) worst = d, worst_step = s;
+      const LatticePoint& p = ring[(start + s) % n];
+      const double measure = chord == 0.0 ? std::hypot(p.x - a.x, p.y - a.y) : std::abs(ux * (p.y - a.y) - uy * (p.x - a.x));
+      if (measure > worst_measure) worst_measure = measure, worst_step = s;
     }
+    const double worst = chord == 0.0 ? worst_measure : worst_measure / chord;
     if (worst > tolerance || force_split) {
       force_split = false;
       keep[(start + worst_step) % n] = true;
