@@ -389,7 +389,7 @@ TEST_CASE("synthetic buildings: every room is one area, every door one passage n
   CHECK(doors_found == doors);
 }
 
-TEST_CASE("byte scans find the same first (un)equal byte as a plain loop") {
+TEST_CASE("byte scans find and count the same bytes as a plain loop") {
   detail::Random random(8);
   for (int trial = 0; trial < 2000; ++trial) {
     const int n = random.integer(0, 70);
@@ -403,6 +403,8 @@ TEST_CASE("byte scans find the same first (un)equal byte as a plain loop") {
     while (not_equal < to && row[not_equal] == value) ++not_equal;
     CHECK(detail::find_byte_equal(row.data(), from, to, value) == equal);
     CHECK(detail::find_byte_not_equal(row.data(), from, to, value) == not_equal);
+    CHECK(detail::count_byte_equal(row.data() + from, static_cast<std::size_t>(to - from), value) ==
+          static_cast<std::size_t>(std::count(row.begin() + from, row.begin() + to, value)));
   }
 }
 

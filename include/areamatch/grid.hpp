@@ -15,6 +15,7 @@
 /// - **Cell index** (storage order): `row · width + col`, image rows top to bottom.
 ///   A ROS `nav_msgs/OccupancyGrid` stores rows bottom to top: see `ros_data_index`.
 
+#include "detail/blocks.hpp"
 #include "error.hpp"
 
 #include <Eigen/Core>
@@ -123,12 +124,12 @@ class OccupancyGrid {
   std::vector<CellState>& cells() { return cells_; }
 
   CellCounts count() const {
+    static_assert(sizeof(CellState) == 1);
+    const auto* bytes = reinterpret_cast<const std::uint8_t*>(cells_.data());
     CellCounts counts;
-    for (CellState c : cells_) {
-      if (c == CellState::free) ++counts.free;
-      else if (c == CellState::occupied) ++counts.occupied;
-      else ++counts.unknown;
-    }
+    counts.free = detail::count_byte_equal(bytes, cells_.size(), static_cast<std::uint8_t>(CellState::free));
+    counts.occupied = detail::count_byte_equal(bytes, cells_.size(), static_cast<std::uint8_t>(CellState::occupied));
+    counts.unknown = cells_.size() - counts.free - counts.occupied;
     return counts;
   }
 

@@ -5,6 +5,7 @@
 /// small function with `__restrict` parameters and called on fixed blocks by `in_blocks` needs
 /// neither. (Run scalar, the erosion of office_g took 20 ms instead of 2.)
 
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -60,6 +61,24 @@ inline int find_byte_equal(const std::uint8_t* row, int from, int to, std::uint8
 #endif
   while (c < to && row[c] != value) ++c;
   return c;
+}
+
+/// How many of the `count` bytes at `bytes` equal `value`.
+inline std::size_t count_byte_equal(const std::uint8_t* bytes, std::size_t count, std::uint8_t value) {
+  std::size_t n = 0, i = 0;
+#ifdef AREAMATCH_WORD_SCAN
+  const std::uint64_t pattern = 0x0101010101010101ULL * value, low7 = 0x7F7F7F7F7F7F7F7FULL;
+  for (; i + 8 <= count; i += 8) {
+    std::uint64_t word;
+    std::memcpy(&word, bytes + i, 8);
+    const std::uint64_t x = word ^ pattern;
+    // Exactly the zero bytes of x get their high bit set (no borrows across bytes).
+    const std::uint64_t zero = ~(((x & low7) + low7) | x | low7);
+    n += static_cast<std::size_t>(__builtin_popcountll(zero));
+  }
+#endif
+  for (; i < count; ++i) n += bytes[i] == value;
+  return n;
 }
 
 }  // namespace areamatch::detail

@@ -670,7 +670,8 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       const int last = std::min(run.end + space.offset_col, grid.width());
       if (first >= last) continue;
       std::fill(out + first, out + last, run.label);
-      labelled += static_cast<std::size_t>(std::count(state + first, state + last, CellState::free));
+      labelled += detail::count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first),
+                                           static_cast<std::uint8_t>(CellState::free));
     }
   }
   const std::size_t free_cells = grid.count().free;
