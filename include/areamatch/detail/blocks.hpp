@@ -72,9 +72,10 @@ inline std::size_t count_byte_equal(const std::uint8_t* bytes, std::size_t count
     std::uint64_t word;
     std::memcpy(&word, bytes + i, 8);
     const std::uint64_t x = word ^ pattern;
-    // Exactly the zero bytes of x get their high bit set (no borrows across bytes).
+    // Exactly the zero bytes of x get their high bit set (no carries across bytes); the
+    // multiplication sums those bits into the top byte (no popcount instruction needed).
     const std::uint64_t zero = ~(((x & low7) + low7) | x | low7);
-    n += static_cast<std::size_t>(__builtin_popcountll(zero));
+    n += static_cast<std::size_t>(((zero >> 7) * 0x0101010101010101ULL) >> 56);
   }
 #endif
   for (; i < count; ++i) n += bytes[i] == value;
