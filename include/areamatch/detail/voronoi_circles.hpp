@@ -30,6 +30,7 @@
 
 #include <boost/polygon/voronoi.hpp>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstdlib>

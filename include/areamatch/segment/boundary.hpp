@@ -53,8 +53,8 @@ struct BoundaryParams {
   /// matches (docs/performance.md).
   double min_traced_width_m = 0.0;
   /// Most Voronoi input segments accepted; beyond, segmenting throws `limit_error` instead of
-  /// running for minutes. The Voronoi builder costs about 24 000 instructions per segment
-  /// (callgrind, lab_b; 59 000 with Boost's own circle events), so roughly 2 s at the limit on
+  /// running for minutes. The Voronoi builder costs about 16 000 instructions per segment
+  /// (callgrind, lab_b; 59 000 with Boost's own circle events), so roughly 1.5 s at the limit on
   /// the CI machine; the shared maps need at most 4994, a 100 m
   /// synthetic robot map with noise (`areamatch generate --width 100 --height 100 --seed 3`) 25 604.
   std::size_t max_segments = 250'000;
