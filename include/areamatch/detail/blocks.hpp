@@ -29,38 +29,42 @@ inline void in_blocks(int begin, int end, Kernel&& kernel) {
 #define AREAMATCH_WORD_SCAN 1
 #endif
 
-/// The first index in [from, to) whose byte differs from `value`, or `to`.
-inline int find_byte_not_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
+/// The first index in [from, to) where `wanted(byte)` holds, or `to`. Word by word,
+/// `marks(word ^ pattern)` (pattern = `value` in every byte) must be non-zero exactly when the
+/// word holds a wanted byte, its lowest set bit in the first one.
+template <class Marks, class Wanted>
+int find_first_byte(const std::uint8_t* row, int from, int to, std::uint8_t value, Marks&& marks, Wanted&& wanted) {
   int c = from;
 #ifdef AREAMATCH_WORD_SCAN
   const std::uint64_t pattern = 0x0101010101010101ULL * value;
   for (; c + 8 <= to; c += 8) {
     std::uint64_t word;
     std::memcpy(&word, row + c, 8);
-    const std::uint64_t differs = word ^ pattern;  // non-zero bytes where row != value
-    if (differs != 0) return c + __builtin_ctzll(differs) / 8;
+    const std::uint64_t marked = marks(word ^ pattern);
+    if (marked != 0) return c + __builtin_ctzll(marked) / 8;
   }
+#else
+  (void)value;
+  (void)marks;
 #endif
-  while (c < to && row[c] == value) ++c;
+  while (c < to && !wanted(row[c])) ++c;
   return c;
+}
+
+/// The first index in [from, to) whose byte differs from `value`, or `to`.
+inline int find_byte_not_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
+  // Non-zero bytes of word ^ pattern are the ones that differ.
+  return find_first_byte(row, from, to, value, [](std::uint64_t x) { return x; },
+                         [value](std::uint8_t b) { return b != value; });
 }
 
 /// The first index in [from, to) whose byte equals `value`, or `to`.
 inline int find_byte_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
-  int c = from;
-#ifdef AREAMATCH_WORD_SCAN
-  const std::uint64_t pattern = 0x0101010101010101ULL * value;
-  for (; c + 8 <= to; c += 8) {
-    std::uint64_t word;
-    std::memcpy(&word, row + c, 8);
-    const std::uint64_t x = word ^ pattern;  // zero bytes where row == value
-    // The lowest flagged byte is exactly the first zero byte (a borrow only flags bytes above one).
-    const std::uint64_t zero = (x - 0x0101010101010101ULL) & ~x & 0x8080808080808080ULL;
-    if (zero != 0) return c + __builtin_ctzll(zero) / 8;
-  }
-#endif
-  while (c < to && row[c] != value) ++c;
-  return c;
+  // Zero bytes of word ^ pattern are the equal ones; the lowest flagged byte is exactly the first
+  // zero byte (a borrow only flags bytes above one).
+  return find_first_byte(row, from, to, value,
+                         [](std::uint64_t x) { return (x - 0x0101010101010101ULL) & ~x & 0x8080808080808080ULL; },
+                         [value](std::uint8_t b) { return b == value; });
 }
 
 /// How many of the `count` bytes at `bytes` equal `value`.
