@@ -17,10 +17,10 @@
 /// before. The diagram is Boost's (tests compare the edges, and every circle on robot maps), only
 /// events that tie within Boost's tolerance may come out in another order.
 ///
-/// Geometry of `endpoint_circle` (pss), in Boost's orientation (segment 1 runs from site2's point1 to point0, segment 2
-/// from site3's point0 to point1; d1, d2 their directions): the circle's centre c lies on the
-/// bisector where the signed distances to the two lines cancel, L1(c) + L2(c) = 0. With the
-/// point p on line 1 (L1(p) = 0) the circle touches line 1 at p, so c = p + s·n1 with n1 the
+/// Geometry of `endpoint_circle` (pss), in Boost's orientation (segment 1 runs from site2's
+/// point1 to point0, segment 2 from site3's point0 to point1; d1, d2 their directions): the
+/// circle's centre c lies on the bisector where the signed distances to the two lines cancel,
+/// L1(c) + L2(c) = 0. With the point p on line 1 (L1(p) = 0) the circle touches line 1 at p, so c = p + s·n1 with n1 the
 /// unit normal of d1, and L1(c) = s, L2(c) = L2(p) + s·(d̂1·d̂2), hence
 ///   s = −L2(p) / (1 + d̂1·d̂2),   c = p − cross(d2, p − start2) / D · perp(d1),
 ///   D = |d1||d2| + d1·d2  (= cross(d1, d2)² / (|d1||d2| − d1·d2) when d1·d2 < 0, no cancellation),
@@ -141,7 +141,8 @@ struct ErrorBounded {
   friend ErrorBounded operator*(ErrorBounded a, ErrorBounded b) {
     return rounded(a.value * b.value, std::abs(a.value) * b.error + std::abs(b.value) * a.error + a.error * b.error);
   }
-  /// Callers check `divisor_safe()` first.
+  /// Needs |b.value| > b.error: divisors below are far from zero by construction, or checked
+  /// with `divisor_safe()`.
   friend ErrorBounded operator/(ErrorBounded a, ErrorBounded b) {
     const double q = a.value / b.value;
     return rounded(q, (a.error + std::abs(q) * b.error) / (std::abs(b.value) - b.error));
@@ -158,7 +159,7 @@ struct ErrorBounded {
 
 /// The circle through point site `point` tangent to segment sites `segment1`, `segment2` (Boost's
 /// pss roles) for non-parallel segments, as Boost's lazy formula computes it but relative to the
-/// point: with q = 0 at the point, the lines' intersection I, the bisector u = d1·|d2| + d2·|d1|
+/// point: with the point at the origin, the lines' intersection I, the bisector u = d1·|d2| + d2·|d1|
 /// (Boost's d1, d2) and A = |d1||d2| + d1·d2, the centre is I + t·u with
 /// A²t² + 2(u·I)t + |I|² = 0. Boost takes t = (−u·I ± √det) / A² (det = 2·A·or1·or2 from exact
 /// cross products, sign by `point_index`); where those two terms would cancel, the same root is
