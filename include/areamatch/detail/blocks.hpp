@@ -29,6 +29,12 @@ inline void in_blocks(int begin, int end, Kernel&& kernel) {
 #define AREAMATCH_WORD_SCAN 1
 #endif
 
+/// The zero bytes of `x` with their high bit set, and nothing else (no carries across bytes).
+inline std::uint64_t zero_byte_marks(std::uint64_t x) {
+  constexpr std::uint64_t low7 = 0x7F7F7F7F7F7F7F7FULL;
+  return ~(((x & low7) + low7) | x | low7);
+}
+
 /// The first index in [from, to) where `wanted(byte)` holds, or `to`. Word by word,
 /// `marks(word ^ pattern)` (pattern = `value` in every byte) must be non-zero exactly when the
 /// word holds a wanted byte, its lowest set bit in the first one.
@@ -60,10 +66,8 @@ inline int find_byte_not_equal(const std::uint8_t* row, int from, int to, std::u
 
 /// The first index in [from, to) whose byte equals `value`, or `to`.
 inline int find_byte_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
-  // Zero bytes of word ^ pattern are the equal ones; the lowest flagged byte is exactly the first
-  // zero byte (a borrow only flags bytes above one).
-  return find_first_byte(row, from, to, value,
-                         [](std::uint64_t x) { return (x - 0x0101010101010101ULL) & ~x & 0x8080808080808080ULL; },
+  // Zero bytes of word ^ pattern are the equal ones.
+  return find_first_byte(row, from, to, value, [](std::uint64_t x) { return zero_byte_marks(x); },
                          [value](std::uint8_t b) { return b == value; });
 }
 
@@ -71,15 +75,13 @@ inline int find_byte_equal(const std::uint8_t* row, int from, int to, std::uint8
 inline std::size_t count_byte_equal(const std::uint8_t* bytes, std::size_t count, std::uint8_t value) {
   std::size_t n = 0, i = 0;
 #ifdef AREAMATCH_WORD_SCAN
-  const std::uint64_t pattern = 0x0101010101010101ULL * value, low7 = 0x7F7F7F7F7F7F7F7FULL;
+  const std::uint64_t pattern = 0x0101010101010101ULL * value;
   for (; i + 8 <= count; i += 8) {
     std::uint64_t word;
     std::memcpy(&word, bytes + i, 8);
-    const std::uint64_t x = word ^ pattern;
-    // Exactly the zero bytes of x get their high bit set (no carries across bytes); the
-    // multiplication sums those bits into the top byte (no popcount instruction needed).
-    const std::uint64_t zero = ~(((x & low7) + low7) | x | low7);
-    n += static_cast<std::size_t>(((zero >> 7) * 0x0101010101010101ULL) >> 56);
+    // The multiplication sums the marks into the top byte (no popcount instruction needed).
+    const std::uint64_t equal = zero_byte_marks(word ^ pattern);
+    n += static_cast<std::size_t>(((equal >> 7) * 0x0101010101010101ULL) >> 56);
   }
 #endif
   for (; i < count; ++i) n += bytes[i] == value;

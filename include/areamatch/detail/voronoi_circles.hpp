@@ -20,8 +20,8 @@
 /// Geometry of `endpoint_circle` (pss), in Boost's orientation (segment 1 runs from site2's
 /// point1 to point0, segment 2 from site3's point0 to point1; d1, d2 their directions): the
 /// circle's centre c lies on the bisector where the signed distances to the two lines cancel,
-/// L1(c) + L2(c) = 0. With the point p on line 1 (L1(p) = 0) the circle touches line 1 at p, so c = p + s·n1 with n1 the
-/// unit normal of d1, and L1(c) = s, L2(c) = L2(p) + s·(d̂1·d̂2), hence
+/// L1(c) + L2(c) = 0. With the point p on line 1 (L1(p) = 0) the circle touches line 1 at p,
+/// so c = p + s·n1 with n1 the unit normal of d1, and L1(c) = s, L2(c) = L2(p) + s·(d̂1·d̂2), hence
 ///   s = −L2(p) / (1 + d̂1·d̂2),   c = p − cross(d2, p − start2) / D · perp(d1),
 ///   D = |d1||d2| + d1·d2  (= cross(d1, d2)² / (|d1||d2| − d1·d2) when d1·d2 < 0, no cancellation),
 /// radius |s|, and the event's sweep position is c.x + radius. With p on line 2 the roles swap;
@@ -49,14 +49,16 @@ bool ends_at(const Site& segment, const Point& p) {
   return p == segment.point0() || p == segment.point1();
 }
 
+/// The error every circle computed here is proven within, in units of machine epsilon relative to
+/// each coordinate: Boost accepts 64 before recomputing exactly; we stay within half.
+constexpr double max_ulps = 32.0;
+
 /// The circle centred at p + k·normal with radius |k|·|normal| (p, normal integers), as a
 /// Boost circle event (centre, and the sweep position centre.x + radius), if its rounding error
 /// is provably within `max_ulps` of every coordinate. `k` may carry up to 5 epsilon of error.
 template <class Circle>
 bool circle_from_offset(double px, double py, double k, double normal_x, double normal_y, double normal_length,
                         Circle& circle) {
-  // Boost accepts 64 ulps (in units of machine epsilon) before recomputing exactly; stay within half.
-  constexpr double max_ulps = 32.0;
   const double offset_x = k * normal_x, offset_y = k * normal_y;
   const double cx = px + offset_x, cy = py + offset_y;
   const double radius = std::abs(k) * normal_length;
@@ -213,7 +215,6 @@ bool point_segment_segment_circle(const Site& point, const Site& segment1, const
   const E cx = E::of(p.x()) + (ix + t * ux);
   const E cy = E::of(p.y()) + (iy + t * uy);
   const E lower_x = cx + t.abs() * E::of(std::llabs(orientation));
-  constexpr double max_ulps = 32.0;  // within half of Boost's 64, as above
   if (!cx.within_ulps(max_ulps) || !cy.within_ulps(max_ulps) || !lower_x.within_ulps(max_ulps)) return false;
   circle = Circle(cx.value, cy.value, lower_x.value);
   return true;
@@ -254,7 +255,6 @@ bool three_segment_circle(const Site& site1, const Site& site2, const Site& site
   const E centre_x = E::of(ox) + cx / denom;
   const E centre_y = E::of(oy) + cy / denom;
   const E lower_x = E::of(ox) + (cx + r) / denom;
-  constexpr double max_ulps = 32.0;
   if (!centre_x.within_ulps(max_ulps) || !centre_y.within_ulps(max_ulps) || !lower_x.within_ulps(max_ulps)) return false;
   circle = Circle(centre_x.value, centre_y.value, lower_x.value);
   return true;
