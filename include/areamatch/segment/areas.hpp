@@ -357,14 +357,20 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   }
   // The mask's border is obstacle, so a free cell's four neighbours are always inside it.
   const std::ptrdiff_t neighbour_offset[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
-  // Breadth-first growth; into_fringe grows one step (one ring of cells) per call.
+  // Breadth-first growth; into_fringe grows one step (one ring of cells) per call. Over the core,
+  // a cell is taken out of `core` when it is labelled, so `core` alone says what is still open.
   auto grow = [&](std::vector<std::uint32_t>& frontier, bool into_fringe) {
     std::vector<std::uint32_t> next;
     for (std::size_t head = 0; head < frontier.size(); ++head) {
       const std::size_t i = frontier[head];
       for (std::ptrdiff_t d : neighbour_offset) {
         const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
-        if (label[j] != unlabelled || !(into_fringe ? space.free[j] : core[j])) continue;
+        if (into_fringe) {
+          if (label[j] != unlabelled || !space.free[j]) continue;
+        } else {
+          if (!core[j]) continue;
+          core[j] = 0;
+        }
         label[j] = label[i];
         (into_fringe ? next : frontier).push_back(static_cast<std::uint32_t>(j));
       }
@@ -375,6 +381,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   // out of `core`, so the cell-by-cell growth only settles the contested ones — with the same
   // result, since growth never crosses from one component into another.
   detail::fill_uncontested_core(core, label, queue, W, H);
+  for (std::uint32_t seed : queue) core[seed] = 0;  // labelled: no longer open
   grow(queue, false);
   queue.clear();
   // The fringe starts from labelled cells next to unlabelled free space (labelled cells are
@@ -654,15 +661,18 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   // Labels back onto the whole grid, row by row, into the working labels' buffer (the runs hold
   // the final labels, the buffer is no longer read): each row is written once, while in cache
   // (filling the grid with −1 first and scattering the runs after cost office_g ~1.3 ms more).
-  std::size_t labelled = 0;
+  // The grid's free cells are counted in the same pass (a separate count reread the whole grid).
+  constexpr auto free_byte = static_cast<std::uint8_t>(CellState::free);
+  std::size_t labelled = 0, free_cells = 0;
   graph.labels = std::move(label);
   graph.labels.resize(grid.cells().size());
   for (int gr = 0; gr < grid.height(); ++gr) {
     int* out = &graph.labels[grid.index(0, gr)];
     std::fill(out, out + grid.width(), -1);
+    const CellState* state = &grid.cells()[grid.index(0, gr)];
+    free_cells += detail::count_byte_equal(reinterpret_cast<const std::uint8_t*>(state), static_cast<std::size_t>(grid.width()), free_byte);
     const int r = gr - space.offset_row;
     if (r < 0 || r >= H) continue;
-    const CellState* state = &grid.cells()[grid.index(0, gr)];
     for (std::size_t k = row_start[r]; k < row_start[r + 1]; ++k) {
       const LabelRun& run = runs[k];
       if (run.label < 0) continue;
@@ -670,11 +680,9 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       const int last = std::min(run.end + space.offset_col, grid.width());
       if (first >= last) continue;
       std::fill(out + first, out + last, run.label);
-      labelled += detail::count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first),
-                                           static_cast<std::uint8_t>(CellState::free));
+      labelled += detail::count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
     }
   }
-  const std::size_t free_cells = grid.count().free;
   graph.covered_fraction = free_cells ? static_cast<double>(labelled) / free_cells : 0.0;
   return graph;
 }
