@@ -22,7 +22,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <map>
 #include <vector>
 
 namespace areamatch {
@@ -120,15 +119,16 @@ VoronoiSite site_of(const Cell& cell, const std::vector<LatticeSegment>& segment
   return site;
 }
 
-/// Points along a Voronoi edge from v0 to v1 at most `step` apart (both ends included). A curved
-/// edge lies on the parabola of points equidistant from a point site and a segment site.
-inline std::vector<Eigen::Vector2d> edge_points(const Eigen::Vector2d& v0, const Eigen::Vector2d& v1, bool curved,
-                                                const VoronoiSite& s0, const VoronoiSite& s1, double step) {
-  std::vector<Eigen::Vector2d> points;
+/// Points along a Voronoi edge from v0 to v1 at most `step` apart (both ends included), into
+/// `points` (cleared first: one buffer serves every edge). A curved edge lies on the parabola of
+/// points equidistant from a point site and a segment site.
+inline void edge_points(const Eigen::Vector2d& v0, const Eigen::Vector2d& v1, bool curved, const VoronoiSite& s0,
+                        const VoronoiSite& s1, double step, std::vector<Eigen::Vector2d>& points) {
+  points.clear();
   if (!curved) {
     const int n = std::max(1, static_cast<int>(std::ceil((v1 - v0).norm() / step)));
     for (int i = 0; i <= n; ++i) points.push_back(v0 + (v1 - v0) * (static_cast<double>(i) / n));
-    return points;
+    return;
   }
   const VoronoiSite& point_site = s0.is_point ? s0 : s1;
   const VoronoiSite& segment_site = s0.is_point ? s1 : s0;
@@ -148,7 +148,6 @@ inline std::vector<Eigen::Vector2d> edge_points(const Eigen::Vector2d& v0, const
     points.push_back(origin + x * u + y * n);
   }
   points.push_back(v1);
-  return points;
 }
 
 }  // namespace detail
@@ -179,6 +178,7 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
     std::vector<SkeletonSample> samples;
   };
   std::vector<KeptEdge> kept;
+  std::vector<Eigen::Vector2d> points;
   const auto* first_vertex = &diagram.vertices().front();
   for (const auto& edge : diagram.edges()) {
     if (!edge.is_primary() || !edge.is_finite()) continue;
@@ -193,7 +193,9 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
     if ((s0.foot(p0) - p0).norm() < min_clearance || (s0.foot(p1) - p1).norm() < min_clearance) continue;
     KeptEdge k{static_cast<std::size_t>(a - first_vertex), static_cast<std::size_t>(b - first_vertex), {}};
     bool passable = true;
-    for (const Eigen::Vector2d& p : detail::edge_points(p0, p1, edge.is_curved(), s0, s1, step)) {
+    detail::edge_points(p0, p1, edge.is_curved(), s0, s1, step, points);
+    k.samples.reserve(points.size());
+    for (const Eigen::Vector2d& p : points) {
       SkeletonSample sample;
       sample.position = p;
       sample.foot_a = s0.foot(p);
@@ -209,15 +211,21 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   }
 
   // Graph over the kept edges; nodes are vertices of degree ≠ 2 (plus one anchor per pure loop).
-  std::map<std::size_t, std::vector<std::size_t>> incident;  // vertex → kept edge ids
-  for (std::size_t i = 0; i < kept.size(); ++i) {
-    incident[kept[i].v0].push_back(i);
-    incident[kept[i].v1].push_back(i);
+  // Per diagram vertex (by index, ascending): its kept edges in the order they were kept.
+  const std::size_t vertex_count = diagram.vertices().size();
+  std::vector<std::size_t> incident_start(vertex_count + 1, 0);
+  for (const KeptEdge& k : kept) ++incident_start[k.v0 + 1], ++incident_start[k.v1 + 1];
+  for (std::size_t v = 0; v < vertex_count; ++v) incident_start[v + 1] += incident_start[v];
+  std::vector<std::size_t> incident(incident_start.back());
+  {
+    std::vector<std::size_t> filled(incident_start.begin(), incident_start.end() - 1);
+    for (std::size_t i = 0; i < kept.size(); ++i) incident[filled[kept[i].v0]++] = i, incident[filled[kept[i].v1]++] = i;
   }
-  std::map<std::size_t, int> node_of_vertex;
+  auto degree_of = [&](std::size_t vertex) { return incident_start[vertex + 1] - incident_start[vertex]; };
+  auto first_edge = [&](std::size_t vertex) { return incident[incident_start[vertex]]; };
+  std::vector<int> node_of_vertex(vertex_count, -1);
   auto make_node = [&](std::size_t vertex, const SkeletonSample& sample) {
-    auto it = node_of_vertex.find(vertex);
-    if (it != node_of_vertex.end()) return it->second;
+    if (node_of_vertex[vertex] >= 0) return node_of_vertex[vertex];
     const int id = static_cast<int>(skeleton.nodes.size());
     skeleton.nodes.push_back({sample, {}});
     node_of_vertex[vertex] = id;
@@ -226,26 +234,28 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   auto sample_at = [&](std::size_t edge, std::size_t vertex) {
     return kept[edge].v0 == vertex ? kept[edge].samples.front() : kept[edge].samples.back();
   };
-  for (const auto& [vertex, edges] : incident)
-    if (edges.size() != 2) make_node(vertex, sample_at(edges.front(), vertex));
+  for (std::size_t vertex = 0; vertex < vertex_count; ++vertex)
+    if (degree_of(vertex) != 0 && degree_of(vertex) != 2) make_node(vertex, sample_at(first_edge(vertex), vertex));
 
   std::vector<bool> used(kept.size(), false);
   auto walk = [&](std::size_t start_vertex, std::size_t start_edge) {
     SkeletonBranch branch;
-    branch.from = node_of_vertex.at(start_vertex);
+    branch.from = node_of_vertex[start_vertex];
     std::size_t vertex = start_vertex, e = start_edge;
     while (true) {
       used[e] = true;
-      auto samples = kept[e].samples;
-      if (kept[e].v0 != vertex) std::reverse(samples.begin(), samples.end());
-      if (!branch.samples.empty()) samples.erase(samples.begin());  // shared with the previous edge
-      branch.samples.insert(branch.samples.end(), samples.begin(), samples.end());
-      vertex = kept[e].v0 == vertex ? kept[e].v1 : kept[e].v0;
-      if (node_of_vertex.count(vertex)) break;
-      const auto& next = incident[vertex];
+      // The edge's samples in walking order; the first is shared with the previous edge.
+      const auto& samples = kept[e].samples;
+      const bool forward = kept[e].v0 == vertex;
+      const std::size_t skip = branch.samples.empty() ? 0 : 1;
+      if (forward) branch.samples.insert(branch.samples.end(), samples.begin() + static_cast<std::ptrdiff_t>(skip), samples.end());
+      else branch.samples.insert(branch.samples.end(), samples.rbegin() + static_cast<std::ptrdiff_t>(skip), samples.rend());
+      vertex = forward ? kept[e].v1 : kept[e].v0;
+      if (node_of_vertex[vertex] >= 0) break;
+      const std::size_t* next = &incident[incident_start[vertex]];  // degree 2: this edge and the next
       e = next[0] == e ? next[1] : next[0];
     }
-    branch.to = node_of_vertex.at(vertex);
+    branch.to = node_of_vertex[vertex];
     for (std::size_t i = 1; i < branch.samples.size(); ++i)
       branch.length += (branch.samples[i].position - branch.samples[i - 1].position).norm();
     const int id = static_cast<int>(skeleton.branches.size());
@@ -253,16 +263,16 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
     skeleton.nodes[branch.to].branches.push_back(id);
     skeleton.branches.push_back(std::move(branch));
   };
-  for (const auto& [vertex, edges] : incident) {
-    if (!node_of_vertex.count(vertex)) continue;
-    for (std::size_t e : edges)
-      if (!used[e]) walk(vertex, e);
+  for (std::size_t vertex = 0; vertex < vertex_count; ++vertex) {
+    if (node_of_vertex[vertex] < 0) continue;
+    for (std::size_t k = incident_start[vertex]; k < incident_start[vertex + 1]; ++k)
+      if (!used[incident[k]]) walk(vertex, incident[k]);
   }
   // Loops made only of degree-2 vertices get an anchor node at their smallest vertex.
-  for (const auto& [vertex, edges] : incident) {
-    if (used[edges.front()]) continue;
-    make_node(vertex, sample_at(edges.front(), vertex));
-    walk(vertex, edges.front());
+  for (std::size_t vertex = 0; vertex < vertex_count; ++vertex) {
+    if (degree_of(vertex) == 0 || used[first_edge(vertex)]) continue;
+    make_node(vertex, sample_at(first_edge(vertex), vertex));
+    walk(vertex, first_edge(vertex));
   }
 
   // Prune short, narrow dead ends until none is left.
