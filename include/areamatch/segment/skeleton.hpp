@@ -179,7 +179,7 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   };
   std::vector<KeptEdge> kept;
   std::vector<Eigen::Vector2d> points;
-  const auto* first_vertex = &diagram.vertices().front();
+  const auto* first_vertex = diagram.vertices().data();
   for (const auto& edge : diagram.edges()) {
     if (!edge.is_primary() || !edge.is_finite()) continue;
     if (&edge > edge.twin()) continue;  // each undirected edge once
