@@ -6,7 +6,11 @@ the ground truth, overlaps it with IoU >= 0.5. That needs at least half of the d
 to be covered by labelled source space: rooms the robot never entered, or only glimpsed through
 a door, cannot count whatever the segmentation does. For each pair of a manifest this segments
 both maps with `areamatch segment` and reports the consistency next to that ceiling (the share
-of destination areas >= 0.5 m^2 at least half covered by any source area).
+of destination areas >= 0.5 m^2 at least half covered by any source area) and next to what the
+best merging of the source's areas reaches ("merged": an oracle that knows the ground truth joins
+every source area to the destination area holding most of it, then scores as consistency.py).
+No rule that only merges source areas can score above "merged"; splits the source map makes
+across a destination room (walls or furniture the other map does not have) stay in it.
 
 usage: scripts/consistency_bound.py [MANIFEST] [--areamatch PATH] [--kind KIND] [-- SEGMENT OPTIONS]
 needs python3-opencv and python3-numpy (as ../shared/tools/consistency.py does).
@@ -35,12 +39,17 @@ def main():
     parser.add_argument("manifest", nargs="?", default=os.path.join("..", "shared", "pairs.json"))
     parser.add_argument("--areamatch", default=os.path.join("build", "tools", "areamatch"))
     parser.add_argument("--kind", default="slam_to_layout", help="pairs of this kind only ('' for all)")
-    args, extra = parser.parse_known_args()
-    extra = [e for e in extra if e != "--"]
+    # Everything after "--" goes to `areamatch segment` unparsed (argparse would take its first
+    # word for the manifest).
+    argv = sys.argv[1:]
+    cut = argv.index("--") if "--" in argv else len(argv)
+    args = parser.parse_args(argv[:cut])
+    extra = argv[cut + 1:]
     with open(args.manifest) as f:
         manifest = json.load(f)
     root = os.path.dirname(os.path.abspath(args.manifest))
-    print("%-36s %11s %8s %10s" % ("pair", "consistency", "ceiling", "dst_areas"))
+    print("%-36s %11s %8s %8s %10s" % ("pair", "consistency", "merged", "ceiling", "dst_areas"))
+    totals = []
     with tempfile.TemporaryDirectory() as tmp:
         for pair in manifest["pairs"]:
             if args.kind and pair.get("kind") != args.kind:
@@ -54,7 +63,14 @@ def main():
             warped = cv2.warpAffine(src.astype(np.float32), G, (dst.shape[1], dst.shape[0]), flags=cv2.INTER_NEAREST,
                                     borderValue=0).astype(np.int64)
             warped_size = dict(zip(*np.unique(warped, return_counts=True)))
-            count = hits = coverable = 0
+            # The merge oracle: each warped source area joins the destination area (or the outside,
+            # 0) that holds most of it.
+            major = {}
+            for value in np.unique(warped):
+                if value != 0:
+                    values, overlap = np.unique(dst[warped == value], return_counts=True)
+                    major[value] = values[np.argmax(overlap)]
+            count = hits = coverable = merged_hits = 0
             for value in np.unique(dst):
                 if value == 0:
                     continue
@@ -67,8 +83,14 @@ def main():
                 best = max((c / (size + warped_size[v] - c) for v, c in zip(values, overlap) if v != 0), default=0.0)
                 hits += best >= 0.5
                 coverable += (warped[mask] > 0).mean() >= 0.5
+                union = np.isin(warped, [v for v, d in major.items() if d == value])
+                merged_hits += (union & mask).sum() >= 0.5 * (union | mask).sum()
             if count:
-                print("%-36s %11.3f %8.3f %10d" % (pair["name"], hits / count, coverable / count, count))
+                row = (hits / count, merged_hits / count, coverable / count)
+                totals.append(row)
+                print("%-36s %11.3f %8.3f %8.3f %10d" % ((pair["name"],) + row + (count,)))
+    if totals:
+        print("%-36s %11.3f %8.3f %8.3f" % (("mean of %d pairs" % len(totals),) + tuple(np.mean(totals, axis=0))))
 
 
 if __name__ == "__main__":
