@@ -15,6 +15,7 @@
 ///
 /// Everything is in pixel-corner lattice units; parameters are in metres.
 
+#include "../detail/adjacency.hpp"
 #include "../error.hpp"
 #include "skeleton.hpp"
 
@@ -73,7 +74,8 @@ struct SampleGraph {
     std::size_t size() const { return static_cast<std::size_t>(last - first); }
   };
   Neighbours neighbours(int s) const {
-    return {neighbour_ids.data() + neighbour_start[s], neighbour_ids.data() + neighbour_start[s + 1]};
+    const auto node = static_cast<std::size_t>(s);
+    return {adjacency.begin(node), adjacency.end(node)};
   }
 
   static SampleGraph from(const Skeleton& skeleton) {
@@ -93,22 +95,16 @@ struct SampleGraph {
       }
       links.emplace_back(previous, branch.to);
     }
-    g.neighbour_start.assign(g.samples.size() + 1, 0);
-    for (const auto& [a, b] : links) ++g.neighbour_start[a + 1], ++g.neighbour_start[b + 1];
-    for (std::size_t s = 1; s < g.neighbour_start.size(); ++s) g.neighbour_start[s] += g.neighbour_start[s - 1];
-    g.neighbour_ids.resize(2 * links.size());
-    std::vector<int> filled(g.neighbour_start.begin(), g.neighbour_start.end() - 1);
-    for (const auto& [a, b] : links) {
-      g.neighbour_ids[filled[a]++] = b;
-      g.neighbour_ids[filled[b]++] = a;
-    }
+    g.adjacency = detail::build_adjacency<int>(g.samples.size(), links.size(), [&](std::size_t k) {
+      const auto [a, b] = links[k];
+      return detail::LinkEnds<int>{static_cast<std::size_t>(a), b, static_cast<std::size_t>(b), a};
+    });
     return g;
   }
   double distance(int a, int b) const { return (samples[a].position - samples[b].position).norm(); }
 
  private:
-  std::vector<int> neighbour_start;  ///< sample s's neighbours are neighbour_ids[start[s], start[s + 1])
-  std::vector<int> neighbour_ids;
+  detail::AdjacencyLists<int> adjacency;  ///< neighbours of each sample, by sample id
 };
 
 /// A passage found on the skeleton: a door (at the clearance minimum of a narrow stretch) or one

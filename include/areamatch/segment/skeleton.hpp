@@ -11,6 +11,7 @@
 /// Every sample keeps its two *feet*: the nearest points on the two walls it lies between, which
 /// later give each passage's line across the opening.
 
+#include "../detail/adjacency.hpp"
 #include "../detail/voronoi_circles.hpp"
 #include "../error.hpp"
 #include "binarize.hpp"
@@ -213,16 +214,11 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   // Graph over the kept edges; nodes are vertices of degree ≠ 2 (plus one anchor per pure loop).
   // Per diagram vertex (by index, ascending): its kept edges in the order they were kept.
   const std::size_t vertex_count = diagram.vertices().size();
-  std::vector<std::size_t> incident_start(vertex_count + 1, 0);
-  for (const KeptEdge& k : kept) ++incident_start[k.v0 + 1], ++incident_start[k.v1 + 1];
-  for (std::size_t v = 0; v < vertex_count; ++v) incident_start[v + 1] += incident_start[v];
-  std::vector<std::size_t> incident(incident_start.back());
-  {
-    std::vector<std::size_t> filled(incident_start.begin(), incident_start.end() - 1);
-    for (std::size_t i = 0; i < kept.size(); ++i) incident[filled[kept[i].v0]++] = i, incident[filled[kept[i].v1]++] = i;
-  }
-  auto degree_of = [&](std::size_t vertex) { return incident_start[vertex + 1] - incident_start[vertex]; };
-  auto first_edge = [&](std::size_t vertex) { return incident[incident_start[vertex]]; };
+  const auto incident = detail::build_adjacency<std::size_t>(vertex_count, kept.size(), [&](std::size_t i) {
+    return detail::LinkEnds<std::size_t>{kept[i].v0, i, kept[i].v1, i};
+  });
+  auto degree_of = [&](std::size_t vertex) { return incident.degree(vertex); };
+  auto first_edge = [&](std::size_t vertex) { return *incident.begin(vertex); };
   std::vector<int> node_of_vertex(vertex_count, -1);
   auto make_node = [&](std::size_t vertex, const SkeletonSample& sample) {
     if (node_of_vertex[vertex] >= 0) return node_of_vertex[vertex];
@@ -252,7 +248,7 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
       else branch.samples.insert(branch.samples.end(), samples.rbegin() + static_cast<std::ptrdiff_t>(skip), samples.rend());
       vertex = forward ? kept[e].v1 : kept[e].v0;
       if (node_of_vertex[vertex] >= 0) break;
-      const std::size_t* next = &incident[incident_start[vertex]];  // degree 2: this edge and the next
+      const std::size_t* next = incident.begin(vertex);  // degree 2: this edge and the next
       e = next[0] == e ? next[1] : next[0];
     }
     branch.to = node_of_vertex[vertex];
@@ -265,8 +261,8 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   };
   for (std::size_t vertex = 0; vertex < vertex_count; ++vertex) {
     if (node_of_vertex[vertex] < 0) continue;
-    for (std::size_t k = incident_start[vertex]; k < incident_start[vertex + 1]; ++k)
-      if (!used[incident[k]]) walk(vertex, incident[k]);
+    for (const std::size_t* e = incident.begin(vertex); e != incident.end(vertex); ++e)
+      if (!used[*e]) walk(vertex, *e);
   }
   // Loops made only of degree-2 vertices get an anchor node at their smallest vertex.
   for (std::size_t vertex = 0; vertex < vertex_count; ++vertex) {
