@@ -32,6 +32,23 @@ struct RunComponents {
   }
 };
 
+/// Calls `touch(upper, lower)` (indices into `runs`) for every two runs of consecutive rows that
+/// share a horizontal border, or with `reach` 1 also those meeting only at a corner. `runs` are
+/// in raster order (any type with `begin` and `end` columns); row r's are [row_start[r],
+/// row_start[r + 1]). Pairs come in the order of the lower run, then of the upper one.
+template <class Run, class Touch>
+void for_each_vertical_contact(const std::vector<Run>& runs, const std::vector<std::size_t>& row_start, int reach,
+                               Touch&& touch) {
+  const std::size_t rows = row_start.size() - 1;
+  for (std::size_t r = 1; r < rows; ++r) {
+    std::size_t j = row_start[r - 1];
+    for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
+      while (j < row_start[r] && runs[j].end + reach <= runs[i].begin) ++j;
+      for (std::size_t k = j; k < row_start[r] && runs[k].begin < runs[i].end + reach; ++k) touch(k, i);
+    }
+  }
+}
+
 /// `RunComponents` of the cells with `mask == value`, 4-connected or with `eight` 8-connected.
 inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value,
                                     bool eight) {
@@ -55,17 +72,11 @@ inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int w
     while (parent[i] != i) i = parent[i] = parent[parent[i]];
     return i;
   };
-  const int reach = eight ? 1 : 0;  // 8-connectivity also joins runs touching at a corner
-  for (int r = 1; r < height; ++r) {
-    std::size_t j = out.row_start[r - 1];
-    for (std::size_t i = out.row_start[r]; i < out.row_start[r + 1]; ++i) {
-      while (j < out.row_start[r] && runs[j].end + reach <= runs[i].begin) ++j;
-      for (std::size_t k = j; k < out.row_start[r] && runs[k].begin < runs[i].end + reach; ++k) {
-        const std::size_t a = find(i), b = find(k);
-        if (a != b) parent[std::max(a, b)] = std::min(a, b);
-      }
-    }
-  }
+  // 8-connectivity also joins runs touching at a corner.
+  for_each_vertical_contact(runs, out.row_start, eight ? 1 : 0, [&](std::size_t upper, std::size_t lower) {
+    const std::size_t a = find(lower), b = find(upper);
+    if (a != b) parent[std::max(a, b)] = std::min(a, b);
+  });
   for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = find(i);
   return out;
 }

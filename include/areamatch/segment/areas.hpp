@@ -454,20 +454,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     while (run_parent[i] != i) i = run_parent[i] = run_parent[run_parent[i]];
     return i;
   };
-  // Calls fn(upper run, lower run, overlap length) for every pair of runs in consecutive rows
-  // that share a horizontal border.
-  auto for_each_vertical_contact = [&](auto&& fn) {
-    for (int r = 1; r < H; ++r) {
-      std::size_t j = row_start[r - 1];
-      for (std::size_t i = row_start[r]; i < row_start[r + 1]; ++i) {
-        while (j < row_start[r] && runs[j].end <= runs[i].begin) ++j;
-        for (std::size_t k = j; k < row_start[r] && runs[k].begin < runs[i].end; ++k) {
-          fn(k, i, std::min(runs[k].end, runs[i].end) - std::max(runs[k].begin, runs[i].begin));
-        }
-      }
-    }
-  };
-  for_each_vertical_contact([&](std::size_t upper, std::size_t lower, int) {
+  detail::for_each_vertical_contact(runs, row_start, 0, [&](std::size_t upper, std::size_t lower) {
     if (runs[upper].label != runs[lower].label) return;
     const int x = find_run(static_cast<int>(upper)), y = find_run(static_cast<int>(lower));
     if (x != y) run_parent[std::max(x, y)] = std::min(x, y);
@@ -497,7 +484,8 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   for (int r = 0; r < H; ++r)
     for (std::size_t i = row_start[r]; i + 1 < row_start[r + 1]; ++i)
       if (runs[i].end == runs[i + 1].begin) add_border(runs[i].piece, runs[i + 1].piece, 1);
-  for_each_vertical_contact([&](std::size_t upper, std::size_t lower, int overlap) {
+  detail::for_each_vertical_contact(runs, row_start, 0, [&](std::size_t upper, std::size_t lower) {
+    const int overlap = std::min(runs[upper].end, runs[lower].end) - std::max(runs[upper].begin, runs[lower].begin);
     add_border(runs[upper].piece, runs[lower].piece, static_cast<std::size_t>(overlap));
   });
   std::vector<int> parent(piece_count);
