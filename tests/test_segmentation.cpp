@@ -463,6 +463,38 @@ TEST_CASE("binarize: unknown cells are obstacles unless unknown_is_free; the mas
   CHECK_FALSE(with_unknown.is_free(60 - with_unknown.offset_col, 9 - with_unknown.offset_row));
 }
 
+TEST_CASE("erode_mask keeps the cells with no outside cell closer than the distance") {
+  // Masks that touch the grid's edges, rows with nothing in them, and rows wider than the
+  // 8-byte steps of the row scans.
+  detail::Random random(91);
+  for (int trial = 0; trial < 40; ++trial) {
+    const int W = random.integer(1, 70), H = random.integer(1, 30);
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(W) * H, 0);
+    const double density = random.uniform(0.5, 1.0);
+    for (int r = 0; r < H; ++r) {
+      if (random.chance(0.2)) continue;  // an empty row
+      const int from = random.integer(0, W - 1), to = random.integer(from + 1, W);
+      for (int c = from; c < to; ++c) mask[static_cast<std::size_t>(r) * W + c] = random.chance(density);
+    }
+    for (double distance : {0.5, 1.0, 1.5, 2.0, 2.3, 4.5, 5.0}) {
+      const std::vector<std::uint8_t> core = detail::erode_mask(mask, W, H, distance);
+      const int reach = static_cast<int>(std::ceil(distance));
+      for (int r = 0; r < H; ++r)
+        for (int c = 0; c < W; ++c) {
+          bool expected = mask[static_cast<std::size_t>(r) * W + c] != 0;
+          for (int dr = -reach; dr <= reach && expected; ++dr)
+            for (int dc = -reach; dc <= reach && expected; ++dc) {
+              if (dc * dc + dr * dr >= distance * distance) continue;
+              const int cc = c + dc, rr = r + dr;
+              expected = cc >= 0 && rr >= 0 && cc < W && rr < H && mask[static_cast<std::size_t>(rr) * W + cc] != 0;
+            }
+          INFO("trial " << trial << " (" << W << "x" << H << ") distance " << distance << " cell " << c << "," << r);
+          CHECK((core[static_cast<std::size_t>(r) * W + c] != 0) == expected);
+        }
+    }
+  }
+}
+
 TEST_CASE("open_free_space is the opening by a disc, on its fast path and its general one") {
   detail::Random random(77);
   for (int trial = 0; trial < 20; ++trial) {

@@ -24,6 +24,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -106,50 +107,72 @@ inline void and_both_at_least(std::uint8_t* __restrict out, const std::uint8_t* 
   for (int k = 0; k < count; ++k) out[k] &= static_cast<std::uint8_t>((left[k] >= n) & (right[k] >= n));
 }
 
-/// Cells of `mask` farther than `distance` (in cells, centre to centre) from every cell outside
-/// it: the erosion by a disc. Works on byte column distances and a short window per row, so it
+/// Cells of `mask` with no cell outside it closer than `distance` (in cells, centre to centre):
+/// the erosion by a disc. Works on byte column distances and a short window per row, so it
 /// needs one byte per cell. Beyond the mask's edge counts as outside.
 inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mask, int W, int H, double distance) {
   const std::size_t N = static_cast<std::size_t>(W) * H;
   std::vector<std::uint8_t> core(N, 0);
+  if (N == 0) return core;
   const double threshold = distance * distance;
   const int reach = static_cast<int>(std::ceil(distance));
   if (reach >= 250) throw parameter_error("erosion radius too large for the grid's resolution");
   const auto cap = static_cast<std::uint8_t>(reach + 1);  // cap² ≥ threshold: "far enough"
+  // Each row's mask cells lie in [first[r], last[r]); outside it the column distances and the
+  // core stay 0, so every pass skips it — on a rotated or L-shaped building, most of the box.
+  std::vector<int> first(static_cast<std::size_t>(H)), last(static_cast<std::size_t>(H));
+  for (int r = 0; r < H; ++r) {
+    const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * W];
+    const int lo = find_byte_not_equal(row, 0, W, 0);
+    int hi = W;
+    for (std::uint64_t word = 0; hi - lo >= 8; hi -= 8) {  // trailing zero bytes, a word at a time
+      std::memcpy(&word, row + hi - 8, 8);
+      if (word != 0) break;
+    }
+    while (hi > lo && row[hi - 1] == 0) --hi;
+    first[r] = lo;
+    last[r] = hi;
+  }
   // Vertical distance to the nearest non-free cell in the same column, capped.
-  std::vector<std::uint8_t> vertical(N);
-  for (int c = 0; c < W; ++c) vertical[c] = mask[c] ? 1 : 0;
+  std::vector<std::uint8_t> vertical(N, 0);
+  for (int c = first[0]; c < last[0]; ++c) vertical[c] = mask[c] ? 1 : 0;
   for (int r = 1; r < H; ++r) {
     const std::uint8_t* above = &vertical[static_cast<std::size_t>(r - 1) * W];
     const std::uint8_t* free = &mask[static_cast<std::size_t>(r) * W];
     std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    in_blocks(0, W, [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
+    in_blocks(first[r], last[r], [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
   }
+  // Beyond the last row is outside too (as beyond the first, above).
+  std::uint8_t* bottom = &vertical[static_cast<std::size_t>(H - 1) * W];
+  for (int c = first[H - 1]; c < last[H - 1]; ++c) bottom[c] = std::min<std::uint8_t>(bottom[c], 1);
   for (int r = H - 2; r >= 0; --r) {
     const std::uint8_t* below = &vertical[static_cast<std::size_t>(r + 1) * W];
     std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    in_blocks(0, W, [&](int c, int count) { grow_from_below(row + c, below + c, count, cap); });
+    in_blocks(first[r], last[r], [&](int c, int count) { grow_from_below(row + c, below + c, count, cap); });
   }
   // Core iff for every column offset dx within reach: vertical(c + dx) ≥ need[|dx|], the
   // smallest vertical distance that keeps that column's nearest obstacle far enough. One pass
-  // of byte comparisons per offset, which the compiler vectorises.
+  // of byte comparisons per offset, which the compiler vectorises. need[0] ≥ 1 keeps the core
+  // inside the mask (cells outside have vertical distance 0).
   std::vector<std::uint8_t> need(static_cast<std::size_t>(reach) + 1);
   for (int dx = 0; dx <= reach; ++dx) {
     const double rest = threshold - static_cast<double>(dx) * dx;
     need[dx] = static_cast<std::uint8_t>(rest <= 0.0 ? 0 : std::min<int>(cap, static_cast<int>(std::ceil(std::sqrt(rest) - 1e-9))));
   }
+  need[0] = std::max<std::uint8_t>(need[0], 1);
   for (int r = 0; r < H; ++r) {
+    const int lo = first[r], hi = last[r];
+    if (lo >= hi) continue;
     const std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
     std::uint8_t* out = &core[static_cast<std::size_t>(r) * W];
-    in_blocks(0, W, [&](int c, int count) { at_least(out + c, row + c, count, need[0]); });
+    in_blocks(lo, hi, [&](int c, int count) { at_least(out + c, row + c, count, need[0]); });
     for (int dx = 1; dx <= reach; ++dx) {
       const std::uint8_t n = need[dx];
-      const int edge = std::min(dx, W);
       if (n > 0) {  // beyond the mask counts as obstacle: cells that close to its edge fail
-        for (int c = 0; c < edge; ++c) out[c] = 0;
-        for (int c = std::max(W - dx, 0); c < W; ++c) out[c] = 0;
+        for (int c = lo; c < std::min(dx, hi); ++c) out[c] = 0;
+        for (int c = std::max(W - dx, lo); c < hi; ++c) out[c] = 0;
       }
-      in_blocks(dx, W - dx, [&](int c, int count) { and_both_at_least(out + c, row + c - dx, row + c + dx, count, n); });
+      in_blocks(std::max(dx, lo), std::min(W - dx, hi), [&](int c, int count) { and_both_at_least(out + c, row + c - dx, row + c + dx, count, n); });
     }
   }
   return core;
