@@ -106,6 +106,8 @@ def main():
                 subprocess.run([args.areamatch, "match", source, destination, "--allow-reflection", "--labels", matched_png]
                                + door, check=False, capture_output=True)
                 image = cv2.imread(matched_png, cv2.IMREAD_UNCHANGED)
+                if image is not None and image.ndim == 3:
+                    image = image[:, :, 0]
                 matched_ok = consistent(warp(image, pair, dst.shape), dst) if image is not None else {}
                 matched = sum(matched_ok.values()) / len(plain)
             count = len(plain)
