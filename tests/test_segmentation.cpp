@@ -398,11 +398,13 @@ TEST_CASE("byte scans find and count the same bytes as a plain loop") {
     for (auto& b : row) b = static_cast<std::uint8_t>(long_runs ? (random.chance(0.05) ? 1 : 0) : random.integer(0, 2));
     const int from = random.integer(0, n), to = random.integer(from, n);
     const auto value = static_cast<std::uint8_t>(random.integer(0, 2));
-    int equal = from, not_equal = from;
+    int equal = from, not_equal = from, last_not_equal = to;
     while (equal < to && row[equal] != value) ++equal;
     while (not_equal < to && row[not_equal] == value) ++not_equal;
+    while (last_not_equal > from && row[last_not_equal - 1] == value) --last_not_equal;
     CHECK(detail::find_byte_equal(row.data(), from, to, value) == equal);
     CHECK(detail::find_byte_not_equal(row.data(), from, to, value) == not_equal);
+    CHECK(detail::find_last_byte_not_equal(row.data(), from, to, value) == last_not_equal);
     CHECK(detail::count_byte_equal(row.data() + from, static_cast<std::size_t>(to - from), value) ==
           static_cast<std::size_t>(std::count(row.begin() + from, row.begin() + to, value)));
   }

@@ -24,7 +24,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
-#include <cstring>
 #include <limits>
 #include <map>
 #include <numeric>
@@ -123,15 +122,8 @@ inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mas
   std::vector<int> first(static_cast<std::size_t>(H)), last(static_cast<std::size_t>(H));
   for (int r = 0; r < H; ++r) {
     const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * W];
-    const int lo = find_byte_not_equal(row, 0, W, 0);
-    int hi = W;
-    for (std::uint64_t word = 0; hi - lo >= 8; hi -= 8) {  // trailing zero bytes, a word at a time
-      std::memcpy(&word, row + hi - 8, 8);
-      if (word != 0) break;
-    }
-    while (hi > lo && row[hi - 1] == 0) --hi;
-    first[r] = lo;
-    last[r] = hi;
+    first[r] = find_byte_not_equal(row, 0, W, 0);
+    last[r] = find_last_byte_not_equal(row, first[r], W, 0);
   }
   // Vertical distance to the nearest non-free cell in the same column, capped.
   std::vector<std::uint8_t> vertical(N, 0);
