@@ -93,8 +93,9 @@ def main():
             merged = np.zeros_like(warped)
             for value in np.unique(warped):
                 if value != 0:
-                    values, overlap = np.unique(dst[warped == value], return_counts=True)
-                    merged[warped == value] = values[np.argmax(overlap)]
+                    area = warped == value
+                    values, overlap = np.unique(dst[area], return_counts=True)
+                    merged[area] = values[np.argmax(overlap)]
             merged_ok = consistent(merged, dst)
             coverable = {value: (warped[dst == value] > 0).mean() >= 0.5 for value in plain}
             matched = float("nan")
