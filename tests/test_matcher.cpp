@@ -392,3 +392,50 @@ TEST_CASE("angular clustering does not depend on the hypotheses' order") {
     CHECK(again[i].rotation == doctest::Approx(clusters[i].rotation));
   }
 }
+
+namespace {
+
+/// Boundary points of a corridor (walls at y = 0 and y = 1.2, x in [0, 30]) with room dividers
+/// every 3 m above it (x = 3, 6, ..., 27; y in [1.2, 4]), 0.05 m apart.
+std::vector<Eigen::Vector2d> corridor_with_dividers() {
+  std::vector<Eigen::Vector2d> points;
+  for (int i = 0; i <= 600; ++i) {
+    points.emplace_back(0.05 * i, 0.0);
+    points.emplace_back(0.05 * i, 1.2);
+  }
+  for (int k = 1; k <= 9; ++k)
+    for (int j = 1; j <= 56; ++j) points.emplace_back(3.0 * k, 1.2 + 0.05 * j);
+  return points;
+}
+
+}  // namespace
+
+TEST_CASE("boundary normals lie across the walls") {
+  std::vector<Eigen::Vector2d> line;
+  const Eigen::Vector2d along(std::cos(0.5), std::sin(0.5));
+  for (int i = 0; i < 100; ++i) line.push_back(0.05 * i * along);
+  const BoundaryLookup lookup(line, 0.1, 1.0, 0.2);
+  REQUIRE(lookup.has_normals());
+  for (const auto& p : line) CHECK(std::abs(lookup.normal_at(lookup.nearest(p)).dot(along)) < 1e-9);
+  CHECK_FALSE(BoundaryLookup(line, 0.1, 1.0).has_normals());
+}
+
+TEST_CASE("point-to-line ICP pins a map sliding along a corridor to its room dividers") {
+  const auto dest_points = corridor_with_dividers();
+  // The robot saw the middle of the corridor only; its map starts 0.45 m along and 0.1 m across.
+  std::vector<Eigen::Vector2d> source;
+  for (const auto& p : dest_points)
+    if (p.x() > 5.0 && p.x() < 25.0) source.push_back(p);
+  const BoundaryLookup dest(dest_points, 0.1, 2.0, 0.2);
+  Similarity2 start;
+  start.translation = Eigen::Vector2d(0.45, 0.1);
+  start.rotation = 0.01;
+  RefineParams params;
+  const Similarity2 line_fit = refine_icp(source, dest, start, params);
+  CHECK(line_fit.translation.norm() < 0.01);
+  CHECK(std::abs(line_fit.rotation) < 1e-3);
+  params.point_to_line = false;
+  const Similarity2 point_fit = refine_icp(source, dest, start, params);
+  MESSAGE("point-to-point ends " << point_fit.translation.norm() << " m off, point-to-line " << line_fit.translation.norm() << " m");
+  CHECK(line_fit.translation.norm() <= point_fit.translation.norm());
+}

@@ -604,7 +604,8 @@ class Matcher {
         area_points = detail::area_boundary_points(*source.graph, params.refinement.point_spacing_m,
                                                    static_cast<std::size_t>(params.refinement.max_points));
         area_lookup = BoundaryLookup(detail::area_boundary_points(*dest.graph, 0.5 * params.refinement.lookup_cell_m),
-                                     params.refinement.lookup_cell_m, params.refinement.gates_m.front());
+                                     params.refinement.lookup_cell_m, params.refinement.gates_m.front(),
+                                     params.refinement.normal_radius_m);
         points = &area_points;
         lookup = &area_lookup;
       }
@@ -631,8 +632,9 @@ class Matcher {
         *dest.grid, detail::free_boundary_points(*dest.grid, *dest.graph, r.point_spacing_m, max_points));
     e.source_lookup = BoundaryLookup(detail::free_boundary_points(*source.grid, *source.graph, 0.5 * r.lookup_cell_m),
                                      r.lookup_cell_m, margin);
+    // Only the destination's lookup is landed on by ICP: only it needs normals.
     e.dest_lookup = BoundaryLookup(detail::free_boundary_points(*dest.grid, *dest.graph, 0.5 * r.lookup_cell_m),
-                                   r.lookup_cell_m, margin);
+                                   r.lookup_cell_m, margin, r.point_to_line ? r.normal_radius_m : 0.0);
     return e;
   }
 

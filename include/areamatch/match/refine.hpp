@@ -4,7 +4,10 @@
 /// per-area transform into an accurate global one (ALGORITHM.md §7, recommendation 5). The
 /// matching gate shrinks from `gates_m.front()` to `gates_m.back()`; at each step only the
 /// `keep_fraction` closest correspondences count, so laser streaks, furniture and rooms one map
-/// lacks do not pull the result.
+/// lacks do not pull the result. Each step minimises the distances to the destination's walls
+/// along their normals (point-to-line), so the walls across a corridor pin a map sliding along
+/// it; point-to-point steps, which pull every point towards its nearest boundary point, stop
+/// short there.
 
 #include "../area_graph.hpp"
 #include "../error.hpp"
@@ -12,6 +15,7 @@
 #include "raster.hpp"
 #include "../transform.hpp"
 
+#include <Eigen/Cholesky>
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
@@ -32,9 +36,18 @@ struct RefineParams {
   int max_points = 2000;            ///< and to at most this many
   double lookup_cell_m = 0.1;       ///< cell of the destination's nearest-boundary-point lookup
   /// Also fit the scale (a similarity instead of a rigid motion); each iteration may change it by
-  /// at most `max_scale_step` (factor), so a bad early match cannot collapse the map.
+  /// at most `max_scale_step` (factor), so a bad early match cannot collapse the map. The scale is
+  /// fitted by point-to-point steps (point-to-line ones fitting it too lost lab_b_rot123 in
+  /// `areamatch eval --estimate-scale`: docs/matching.md).
   bool estimate_scale = false;
   double max_scale_step = 1.1;
+  /// Minimise distances along the destination's wall normals (point-to-line) rather than to the
+  /// nearest boundary points; needs a lookup built with normals (`BoundaryLookup`'s
+  /// `normal_radius_m`), else point-to-point.
+  bool point_to_line = true;
+  /// The destination's wall normals come from its boundary points within this radius (the
+  /// matcher builds its destination lookup with `MatcherParams::refinement`'s).
+  double normal_radius_m = 0.2;
 
   void validate() const {
     if (gates_m.empty()) throw parameter_error("RefineParams::gates_m must not be empty");
@@ -44,6 +57,7 @@ struct RefineParams {
     detail::require_positive(point_spacing_m, "RefineParams::point_spacing_m");
     if (max_points < 3) throw parameter_error("RefineParams::max_points must be >= 3");
     detail::require_positive(lookup_cell_m, "RefineParams::lookup_cell_m");
+    detail::require_positive(normal_radius_m, "RefineParams::normal_radius_m");
     if (!(max_scale_step >= 1.0 && std::isfinite(max_scale_step))) {
       throw parameter_error("RefineParams::max_scale_step must be a finite factor >= 1");
     }
@@ -114,12 +128,13 @@ inline std::vector<Eigen::Vector2d> area_boundary_points(const AreaGraph& graph,
 
 /// The destination side of ICP: boundary points and, per cell of a square lookup grid, the index
 /// of the (approximately) nearest one — a two-pass nearest-seed propagation, exact to a fraction
-/// of a cell, which is all a shrinking-gate ICP needs.
+/// of a cell, which is all a shrinking-gate ICP needs — and optionally each point's normal.
 class BoundaryLookup {
  public:
   BoundaryLookup() = default;
-  /// A lookup over `points` on cells of `cell_m`, reaching `margin_m` beyond their bounding box.
-  BoundaryLookup(std::vector<Eigen::Vector2d> points, double cell_m, double margin_m)
+  /// A lookup over `points` on cells of `cell_m`, reaching `margin_m` beyond their bounding box;
+  /// with `normal_radius_m` > 0, each point's normal from its neighbours within that radius.
+  BoundaryLookup(std::vector<Eigen::Vector2d> points, double cell_m, double margin_m, double normal_radius_m = 0.0)
       : cell_m_(cell_m), points_(std::move(points)) {
     if (points_.empty()) return;
     Eigen::Vector2d lo = points_.front(), hi = points_.front();
@@ -139,10 +154,17 @@ class BoundaryLookup {
       }
     }
     propagate();
+    if (normal_radius_m > 0.0) compute_normals(normal_radius_m);
   }
 
   bool empty() const { return points_.empty(); }
   const std::vector<Eigen::Vector2d>& points() const { return points_; }
+  bool has_normals() const { return !normals_.empty(); }
+  /// The unit normal at a point returned by `nearest` (lookups built with normals only); its
+  /// sign is arbitrary.
+  const Eigen::Vector2d& normal_at(const Eigen::Vector2d* point) const {
+    return normals_[static_cast<std::size_t>(point - points_.data())];
+  }
 
   /// The boundary point nearest to p, or nullptr when p is outside the lookup grid.
   const Eigen::Vector2d* nearest(const Eigen::Vector2d& p) const {
@@ -188,12 +210,54 @@ class BoundaryLookup {
     }
   }
 
+  /// Per point, the direction of least spread of the points within `radius` (2×2 covariance):
+  /// across the wall. Points are bucketed by lookup cell (counting sort) to find neighbours.
+  void compute_normals(double radius) {
+    const std::size_t cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
+    std::vector<std::size_t> start(cells + 1, 0), cell(points_.size()), order(points_.size());
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const auto [x, y] = cell_of(points_[i]);
+      cell[i] = index(x, y);
+      ++start[cell[i] + 1];
+    }
+    for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+    std::vector<std::size_t> next(start.begin(), start.end() - 1);
+    for (std::size_t i = 0; i < points_.size(); ++i) order[next[cell[i]]++] = i;
+    const int reach = static_cast<int>(std::ceil(radius / cell_m_));
+    const double radius2 = radius * radius;
+    normals_.assign(points_.size(), Eigen::Vector2d(1.0, 0.0));
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const auto [x, y] = cell_of(points_[i]);
+      double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
+      for (int ny = std::max(0, y - reach); ny <= std::min(height_ - 1, y + reach); ++ny) {
+        for (int nx = std::max(0, x - reach); nx <= std::min(width_ - 1, x + reach); ++nx) {
+          const std::size_t c = index(nx, ny);
+          for (std::size_t k = start[c]; k < start[c + 1]; ++k) {
+            const Eigen::Vector2d d = points_[order[k]] - points_[i];
+            if (d.squaredNorm() > radius2) continue;
+            n += 1.0;
+            sx += d.x();
+            sy += d.y();
+            sxx += d.x() * d.x();
+            sxy += d.x() * d.y();
+            syy += d.y() * d.y();
+          }
+        }
+      }
+      if (n < 2.0) continue;  // a lone point: any direction is as good
+      const double cxx = sxx - sx * sx / n, cxy = sxy - sx * sy / n, cyy = syy - sy * sy / n;
+      const double along = 0.5 * std::atan2(2.0 * cxy, cxx - cyy);  // direction of most spread
+      normals_[i] = Eigen::Vector2d(-std::sin(along), std::cos(along));
+    }
+  }
+
   double cell_m_ = 0.1;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   int width_ = 0;
   int height_ = 0;
   std::vector<Eigen::Vector2d> points_;
   std::vector<int> nearest_;
+  std::vector<Eigen::Vector2d> normals_;  ///< per point; empty when built without normals
 };
 
 /// Share of `source_points` that land within `distance_m` of a destination boundary point under
@@ -213,7 +277,8 @@ inline double boundary_inlier_fraction(const std::vector<Eigen::Vector2d>& sourc
 
 /// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept; the scale fitted
 /// too with `params.estimate_scale`) that best lays `source_points` onto the destination
-/// boundary. Returns `initial` when too few points match.
+/// boundary. Point-to-line steps with `params.point_to_line` and a lookup with normals (rigid
+/// only), else point-to-point. Returns `initial` when too few points match.
 inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
                               const Similarity2& initial, const RefineParams& params) {
   Similarity2 T = initial;
@@ -222,7 +287,9 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
     double distance2;
     Eigen::Vector2d from;  // F·scale·x, the source point before rotation
     Eigen::Vector2d to;
+    Eigen::Vector2d normal;  // the destination's, at `to` (point-to-line only)
   };
+  const bool point_to_line = params.point_to_line && dest.has_normals() && !params.estimate_scale;
   std::vector<Match> matches;
   matches.reserve(source_points.size());
   Similarity2 shape{0.0, Eigen::Vector2d::Zero(), initial.scale, initial.reflected};
@@ -236,7 +303,7 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         const Eigen::Vector2d* d = dest.nearest(y);
         if (!d) continue;
         const double d2 = (*d - y).squaredNorm();
-        if (d2 <= gate * gate) matches.push_back({d2, from, *d});
+        if (d2 <= gate * gate) matches.push_back({d2, from, *d, point_to_line ? dest.normal_at(d) : Eigen::Vector2d::Zero()});
       }
       if (matches.size() < 3) return T;
       const std::size_t keep = std::max<std::size_t>(3, static_cast<std::size_t>(params.keep_fraction * matches.size()));
@@ -244,6 +311,28 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         std::nth_element(matches.begin(), matches.begin() + static_cast<std::ptrdiff_t>(keep), matches.end(),
                          [](const Match& a, const Match& b) { return a.distance2 < b.distance2; });
         matches.resize(keep);
+      }
+      if (point_to_line) {
+        // Linearised about the matched points' centre c: a small turn a about c and a shift t
+        // move y to y + a·perp(y − c) + t; minimise Σ ((that − to)·normal)² (3×3 normal equations).
+        Eigen::Vector2d c = Eigen::Vector2d::Zero();
+        for (const auto& m : matches) c += rotation * m.from;
+        c = c / static_cast<double>(matches.size()) + T.translation;
+        Eigen::Matrix3d A = Eigen::Matrix3d::Zero();
+        Eigen::Vector3d b = Eigen::Vector3d::Zero();
+        for (const auto& m : matches) {
+          const Eigen::Vector2d y = rotation * m.from + T.translation, q = y - c;
+          const Eigen::Vector3d j(q.x() * m.normal.y() - q.y() * m.normal.x(), m.normal.x(), m.normal.y());
+          A += j * j.transpose();
+          b -= j * (y - m.to).dot(m.normal);
+        }
+        // A tiny ridge keeps a direction no wall constrains (a straight corridor's length) where it is.
+        const Eigen::Vector3d step = (A + (1e-9 * A.trace() + 1e-12) * Eigen::Matrix3d::Identity()).ldlt().solve(b);
+        const Eigen::Rotation2Dd turn(step(0));
+        T.rotation = wrap_angle(T.rotation + step(0));
+        T.translation = turn * (T.translation - c) + c + step.tail<2>();
+        if (std::abs(step(0)) < 1e-5 && step.tail<2>().norm() < 1e-4) break;
+        continue;
       }
       // 2D Procrustes: the rotation that best turns the centred source points onto the targets.
       Eigen::Vector2d mean_from = Eigen::Vector2d::Zero(), mean_to = Eigen::Vector2d::Zero();
