@@ -760,3 +760,28 @@ TEST_CASE("room scores agree with the definition of segscore.py") {
   CHECK(s.recall == doctest::Approx((1.0 + 0.5) / 2));
   CHECK(s.precision == doctest::Approx((300.0 / 450 + 150.0 / 250) / 2));
 }
+
+TEST_CASE("the free end of a pruned spur joins the region its spur led into") {
+  std::size_t lone_nodes = 0;
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    RobotMapParams rp;
+    rp.wall_noise_m = 0.03;
+    rp.max_clutter_per_room = 2;
+    const auto robot = make_robot_map(generate_building(BuildingParams{}, seed), rp, seed);
+    const SegmentationDetails d = VoronoiSegmenter{}.segment_with_details(robot.grid);
+    // Lone nodes: every branch pruned. Each takes a region some of its pruned branches' other
+    // ends (or theirs, in turn) have; no region is made of one lone sample.
+    std::vector<int> samples_of_region(d.rooms.region_count(), 0);
+    for (int region : d.rooms.region_of_sample) {
+      REQUIRE(region >= 0);
+      ++samples_of_region[region];
+    }
+    for (std::size_t j = 0; j < d.skeleton.nodes.size(); ++j) {
+      if (d.skeleton.degree(static_cast<int>(j)) != 0) continue;
+      ++lone_nodes;
+      CHECK(samples_of_region[d.rooms.region_of_sample[j]] > 1);
+    }
+  }
+  MESSAGE("lone nodes: " << lone_nodes);
+  CHECK(lone_nodes > 0);  // the case is exercised
+}

@@ -105,7 +105,7 @@ struct MatcherParams {
   /// Below this `MatchEvidence::agreement` the result is rejected as "not the same building".
   /// Calibrated on the real pairs of shared/pairs.json, all 596 pairs of maps of different
   /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): every true pair
-  /// scored 0.841 or more; 2 of 2876 pairs of different buildings scored above 0.835 (at most 0.847).
+  /// scored 0.840 or more; 2 of 2876 pairs of different buildings scored above 0.835 (at most 0.845).
   double min_agreement = 0.835;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
   /// the two wall agreements). A map confirmed on little of the other's free space is less certain.

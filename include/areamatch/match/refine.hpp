@@ -211,37 +211,48 @@ class BoundaryLookup {
   }
 
   /// Per point, the direction of least spread of the points within `radius` (2×2 covariance):
-  /// across the wall. Points are bucketed by lookup cell (counting sort) to find neighbours.
+  /// across the wall. Neighbours are found in buckets of side `radius` over the points' box
+  /// (counting sort), so each point looks at 3 × 3 buckets.
   void compute_normals(double radius) {
-    const std::size_t cells = static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_);
-    std::vector<std::size_t> start(cells + 1, 0), cell(points_.size()), order(points_.size());
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-      const auto [x, y] = cell_of(points_[i]);
-      cell[i] = index(x, y);
-      ++start[cell[i] + 1];
+    Eigen::Vector2d lo = points_.front(), hi = points_.front();
+    for (const auto& p : points_) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
     }
-    for (std::size_t c = 0; c < cells; ++c) start[c + 1] += start[c];
+    const int bx = static_cast<int>((hi.x() - lo.x()) / radius) + 1, by = static_cast<int>((hi.y() - lo.y()) / radius) + 1;
+    auto bucket_of = [&](const Eigen::Vector2d& p) {
+      return std::pair<int, int>{std::min(bx - 1, static_cast<int>((p.x() - lo.x()) / radius)),
+                                 std::min(by - 1, static_cast<int>((p.y() - lo.y()) / radius))};
+    };
+    std::vector<std::size_t> start(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by) + 1, 0), order(points_.size());
+    std::vector<std::size_t> bucket(points_.size());
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      const auto [x, y] = bucket_of(points_[i]);
+      bucket[i] = static_cast<std::size_t>(y) * static_cast<std::size_t>(bx) + static_cast<std::size_t>(x);
+      ++start[bucket[i] + 1];
+    }
+    for (std::size_t b = 0; b + 1 < start.size(); ++b) start[b + 1] += start[b];
     std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < points_.size(); ++i) order[next[cell[i]]++] = i;
-    const int reach = static_cast<int>(std::ceil(radius / cell_m_));
+    for (std::size_t i = 0; i < points_.size(); ++i) order[next[bucket[i]]++] = i;
     const double radius2 = radius * radius;
     normals_.assign(points_.size(), Eigen::Vector2d(1.0, 0.0));
     for (std::size_t i = 0; i < points_.size(); ++i) {
-      const auto [x, y] = cell_of(points_[i]);
+      const auto [x, y] = bucket_of(points_[i]);
       double n = 0.0, sx = 0.0, sy = 0.0, sxx = 0.0, sxy = 0.0, syy = 0.0;
-      for (int ny = std::max(0, y - reach); ny <= std::min(height_ - 1, y + reach); ++ny) {
-        for (int nx = std::max(0, x - reach); nx <= std::min(width_ - 1, x + reach); ++nx) {
-          const std::size_t c = index(nx, ny);
-          for (std::size_t k = start[c]; k < start[c + 1]; ++k) {
-            const Eigen::Vector2d d = points_[order[k]] - points_[i];
-            if (d.squaredNorm() > radius2) continue;
-            n += 1.0;
-            sx += d.x();
-            sy += d.y();
-            sxx += d.x() * d.x();
-            sxy += d.x() * d.y();
-            syy += d.y() * d.y();
-          }
+      for (int ny = std::max(0, y - 1); ny <= std::min(by - 1, y + 1); ++ny) {
+        const std::size_t row = static_cast<std::size_t>(ny) * static_cast<std::size_t>(bx);
+        // The three buckets of a row are consecutive in `order`.
+        const std::size_t first = start[row + static_cast<std::size_t>(std::max(0, x - 1))];
+        const std::size_t last = start[row + static_cast<std::size_t>(std::min(bx - 1, x + 1)) + 1];
+        for (std::size_t k = first; k < last; ++k) {
+          const Eigen::Vector2d d = points_[order[k]] - points_[i];
+          if (d.squaredNorm() > radius2) continue;
+          n += 1.0;
+          sx += d.x();
+          sy += d.y();
+          sxx += d.x() * d.x();
+          sxy += d.x() * d.y();
+          syy += d.y() * d.y();
         }
       }
       if (n < 2.0) continue;  // a lone point: any direction is as good

@@ -9,7 +9,8 @@
 /// - A narrow stretch that joins two different rooms is a door: one passage at its clearance
 ///   minimum — where the opening really is, with its width and the line across it.
 /// - Narrow parts that lead nowhere (dead ends, loops around furniture back into the same room)
-///   belong to the room they hang from.
+///   belong to the room they hang from; so does the free end of a pruned spur (a lone node),
+///   which would otherwise seed a sliver area of its own.
 /// - Narrow parts that are long (a corridor narrower than W) or branch become areas of their own,
 ///   with a passage at the narrowest point near each room they open into.
 ///
@@ -253,7 +254,11 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
     });
   };
 
+  // A node whose branches were all pruned (the free end of a spur) is a skeleton part of one
+  // sample: it belongs to the region its spur led into, not to a region of its own.
+  auto lone = [&](int s) { return s < static_cast<int>(skeleton.nodes.size()) && g.neighbours(s).size() == 0; };
   for (int c = 0; c < narrow_count; ++c) {
+    if (members[c].size() == 1 && lone(members[c].front())) continue;
     auto& atts = attachments[c];
     std::sort(atts.begin(), atts.end(), [](const Attachment& a, const Attachment& b) {
       return a.narrow_sample < b.narrow_sample || (a.narrow_sample == b.narrow_sample && a.room < b.room);
@@ -294,6 +299,24 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
         out.region_of_sample[s] = a.room;
       }
       out.passages.push_back({door, a.room, corridor, false, g.samples[door].foot_a, g.samples[door].foot_b});
+    }
+  }
+  // Lone nodes take the region of the nearest node (in branches) their pruned spurs lead to:
+  // pruning always leaves one branch of every skeleton piece, so there is one.
+  for (std::size_t j = 0; j < skeleton.nodes.size(); ++j) {
+    if (out.region_of_sample[j] >= 0) continue;
+    std::vector<int> queue{static_cast<int>(j)};
+    for (std::size_t head = 0; head < queue.size() && out.region_of_sample[j] < 0; ++head) {
+      for (int b : skeleton.nodes[queue[head]].branches) {
+        const auto& branch = skeleton.branches[b];
+        const int other = branch.from == queue[head] ? branch.to : branch.from;
+        if (std::find(queue.begin(), queue.end(), other) != queue.end()) continue;
+        if (out.region_of_sample[other] >= 0) {
+          out.region_of_sample[j] = out.region_of_sample[other];
+          break;
+        }
+        queue.push_back(other);
+      }
     }
   }
   if (params.split_at_junctions) detail::split_at_junctions(out, skeleton, resolution, params);
