@@ -605,7 +605,7 @@ class Matcher {
                                                    static_cast<std::size_t>(params.refinement.max_points));
         area_lookup = BoundaryLookup(detail::area_boundary_points(*dest.graph, 0.5 * params.refinement.lookup_cell_m),
                                      params.refinement.lookup_cell_m, params.refinement.gates_m.front(),
-                                     params.refinement.normal_radius_m);
+                                     params.refinement.point_to_line ? params.refinement.normal_radius_m : 0.0);
         points = &area_points;
         lookup = &area_lookup;
       }

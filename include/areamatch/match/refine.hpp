@@ -154,7 +154,7 @@ class BoundaryLookup {
       }
     }
     propagate();
-    if (normal_radius_m > 0.0) compute_normals(normal_radius_m);
+    if (normal_radius_m > 0.0) compute_normals(normal_radius_m, lo, hi);
   }
 
   bool empty() const { return points_.empty(); }
@@ -212,13 +212,8 @@ class BoundaryLookup {
 
   /// Per point, the direction of least spread of the points within `radius` (2×2 covariance):
   /// across the wall. Neighbours are found in buckets of side `radius` over the points' box
-  /// (counting sort), so each point looks at 3 × 3 buckets.
-  void compute_normals(double radius) {
-    Eigen::Vector2d lo = points_.front(), hi = points_.front();
-    for (const auto& p : points_) {
-      lo = lo.cwiseMin(p);
-      hi = hi.cwiseMax(p);
-    }
+  /// [lo, hi] (counting sort), so each point looks at 3 × 3 buckets.
+  void compute_normals(double radius, const Eigen::Vector2d& lo, const Eigen::Vector2d& hi) {
     const int bx = static_cast<int>((hi.x() - lo.x()) / radius) + 1, by = static_cast<int>((hi.y() - lo.y()) / radius) + 1;
     auto bucket_of = [&](const Eigen::Vector2d& p) {
       return std::pair<int, int>{std::min(bx - 1, static_cast<int>((p.x() - lo.x()) / radius)),

@@ -203,8 +203,11 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
     if (wide[s] >= 0) out.region_of_sample[s] = room_of_wide[wide[s]];
   auto is_room_sample = [&](int s) { return out.region_of_sample[s] >= 0; };
 
+  // A node whose branches were all pruned (the free end of a spur) is a skeleton part of one
+  // sample: it belongs to the region its spur led into (below), not to a narrow part of its own.
+  auto lone = [&](int s) { return g.neighbours(s).size() == 0; };
   int narrow_count = 0;
-  const auto narrow = detail::components(g, [&](int s) { return !is_room_sample(s); }, narrow_count);
+  const auto narrow = detail::components(g, [&](int s) { return !is_room_sample(s) && !lone(s); }, narrow_count);
   // Per narrow part: its samples, length, junctions and where it touches rooms.
   struct Attachment {
     int narrow_sample, room;
@@ -254,11 +257,7 @@ inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, c
     });
   };
 
-  // A node whose branches were all pruned (the free end of a spur) is a skeleton part of one
-  // sample: it belongs to the region its spur led into, not to a region of its own.
-  auto lone = [&](int s) { return s < static_cast<int>(skeleton.nodes.size()) && g.neighbours(s).size() == 0; };
   for (int c = 0; c < narrow_count; ++c) {
-    if (members[c].size() == 1 && lone(members[c].front())) continue;
     auto& atts = attachments[c];
     std::sort(atts.begin(), atts.end(), [](const Attachment& a, const Attachment& b) {
       return a.narrow_sample < b.narrow_sample || (a.narrow_sample == b.narrow_sample && a.room < b.room);
