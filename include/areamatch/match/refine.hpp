@@ -185,29 +185,55 @@ class BoundaryLookup {
   double distance2(const Eigen::Vector2d& p, int x, int y) const {
     return (p - (origin_ + cell_m_ * Eigen::Vector2d(x + 0.5, y + 0.5))).squaredNorm();
   }
-  void relax(int x, int y, int nx, int ny) {
-    if (nx < 0 || ny < 0 || nx >= width_ || ny >= height_) return;
-    const int candidate = nearest_[index(nx, ny)];
-    if (candidate < 0) return;
-    int& slot = nearest_[index(x, y)];
-    if (slot < 0 || distance2(points_[static_cast<std::size_t>(candidate)], x, y) <
-                        distance2(points_[static_cast<std::size_t>(slot)], x, y)) {
-      slot = candidate;
-    }
+  /// A cell (centre cx, cy) holding `slot` at squared distance `best` takes `candidate` if it is
+  /// nearer; a neighbour holding the same point (most do) costs no distance.
+  void consider(int& slot, double& best, int candidate, double cx, double cy) const {
+    if (candidate < 0 || candidate == slot) return;
+    const Eigen::Vector2d& p = points_[static_cast<std::size_t>(candidate)];
+    const double dx = p.x() - cx, dy = p.y() - cy, d = dx * dx + dy * dy;
+    if (slot < 0 || d < best) slot = candidate, best = d;
   }
+  /// Two raster passes, down then up; in each, a cell looks at its neighbours already visited
+  /// (left, above-left, above, above-right going down), then a sweep the other way along the row.
   void propagate() {
-    for (int y = 0; y < height_; ++y) {
-      for (int x = 0; x < width_; ++x) {
-        relax(x, y, x - 1, y); relax(x, y, x, y - 1); relax(x, y, x - 1, y - 1); relax(x, y, x + 1, y - 1);
+    const int W = width_, H = height_;
+    std::vector<double> centre_x(static_cast<std::size_t>(W));
+    for (int x = 0; x < W; ++x) centre_x[static_cast<std::size_t>(x)] = origin_.x() + cell_m_ * (x + 0.5);
+    auto row = [&](int y) { return nearest_.data() + index(0, y); };
+    auto distance = [&](int slot, int x, double cy) {
+      if (slot < 0) return 0.0;
+      const Eigen::Vector2d& p = points_[static_cast<std::size_t>(slot)];
+      const double dx = p.x() - centre_x[static_cast<std::size_t>(x)], dy = p.y() - cy;
+      return dx * dx + dy * dy;
+    };
+    // `other` is the row visited before this one (above going down, below going up), or null.
+    auto pass = [&](int y, const int* other, bool down) {
+      int* cells = row(y);
+      const double cy = origin_.y() + cell_m_ * (y + 0.5);
+      const int first = down ? 0 : W - 1, step = down ? 1 : -1;
+      for (int x = first; x >= 0 && x < W; x += step) {
+        int& slot = cells[x];
+        double best = distance(slot, x, cy);
+        const double cx = centre_x[static_cast<std::size_t>(x)];
+        const int back = x - step, ahead = x + step;
+        const bool has_back = back >= 0 && back < W, has_ahead = ahead >= 0 && ahead < W;
+        if (has_back) consider(slot, best, cells[back], cx, cy);
+        if (other) {
+          consider(slot, best, other[x], cx, cy);
+          if (has_back) consider(slot, best, other[back], cx, cy);
+          if (has_ahead) consider(slot, best, other[ahead], cx, cy);
+        }
       }
-      for (int x = width_ - 1; x >= 0; --x) relax(x, y, x + 1, y);
-    }
-    for (int y = height_ - 1; y >= 0; --y) {
-      for (int x = width_ - 1; x >= 0; --x) {
-        relax(x, y, x + 1, y); relax(x, y, x, y + 1); relax(x, y, x + 1, y + 1); relax(x, y, x - 1, y + 1);
+      for (int x = W - 1 - first; x >= 0 && x < W; x -= step) {
+        const int ahead = x + step;
+        if (ahead < 0 || ahead >= W) continue;
+        int& slot = cells[x];
+        double best = distance(slot, x, cy);
+        consider(slot, best, cells[ahead], centre_x[static_cast<std::size_t>(x)], cy);
       }
-      for (int x = 0; x < width_; ++x) relax(x, y, x - 1, y);
-    }
+    };
+    for (int y = 0; y < H; ++y) pass(y, y > 0 ? row(y - 1) : nullptr, true);
+    for (int y = H - 1; y >= 0; --y) pass(y, y + 1 < H ? row(y + 1) : nullptr, false);
   }
 
   /// Per point, the direction of least spread of the points within `radius` (2×2 covariance):
