@@ -182,39 +182,37 @@ class BoundaryLookup {
   std::size_t index(int x, int y) const {
     return static_cast<std::size_t>(y) * static_cast<std::size_t>(width_) + static_cast<std::size_t>(x);
   }
-  double distance2(const Eigen::Vector2d& p, int x, int y) const {
-    return (p - (origin_ + cell_m_ * Eigen::Vector2d(x + 0.5, y + 0.5))).squaredNorm();
+  double centre_x(int x) const { return origin_.x() + cell_m_ * (x + 0.5); }
+  double centre_y(int y) const { return origin_.y() + cell_m_ * (y + 0.5); }
+  static double squared_distance(const Eigen::Vector2d& p, double cx, double cy) {
+    const double dx = p.x() - cx, dy = p.y() - cy;
+    return dx * dx + dy * dy;
   }
+  double distance2(const Eigen::Vector2d& p, int x, int y) const { return squared_distance(p, centre_x(x), centre_y(y)); }
   /// A cell (centre cx, cy) holding `slot` at squared distance `best` takes `candidate` if it is
   /// nearer; a neighbour holding the same point (most do) costs no distance.
   void consider(int& slot, double& best, int candidate, double cx, double cy) const {
     if (candidate < 0 || candidate == slot) return;
-    const Eigen::Vector2d& p = points_[static_cast<std::size_t>(candidate)];
-    const double dx = p.x() - cx, dy = p.y() - cy, d = dx * dx + dy * dy;
+    const double d = squared_distance(points_[static_cast<std::size_t>(candidate)], cx, cy);
     if (slot < 0 || d < best) slot = candidate, best = d;
   }
   /// Two raster passes, down then up; in each, a cell looks at its neighbours already visited
   /// (left, above-left, above, above-right going down), then a sweep the other way along the row.
   void propagate() {
     const int W = width_, H = height_;
-    std::vector<double> centre_x(static_cast<std::size_t>(W));
-    for (int x = 0; x < W; ++x) centre_x[static_cast<std::size_t>(x)] = origin_.x() + cell_m_ * (x + 0.5);
     auto row = [&](int y) { return nearest_.data() + index(0, y); };
-    auto distance = [&](int slot, int x, double cy) {
-      if (slot < 0) return 0.0;
-      const Eigen::Vector2d& p = points_[static_cast<std::size_t>(slot)];
-      const double dx = p.x() - centre_x[static_cast<std::size_t>(x)], dy = p.y() - cy;
-      return dx * dx + dy * dy;
+    auto distance = [&](int slot, double cx, double cy) {
+      return slot < 0 ? 0.0 : squared_distance(points_[static_cast<std::size_t>(slot)], cx, cy);
     };
     // `other` is the row visited before this one (above going down, below going up), or null.
     auto pass = [&](int y, const int* other, bool down) {
       int* cells = row(y);
-      const double cy = origin_.y() + cell_m_ * (y + 0.5);
+      const double cy = centre_y(y);
       const int first = down ? 0 : W - 1, step = down ? 1 : -1;
       for (int x = first; x >= 0 && x < W; x += step) {
         int& slot = cells[x];
-        double best = distance(slot, x, cy);
-        const double cx = centre_x[static_cast<std::size_t>(x)];
+        const double cx = centre_x(x);
+        double best = distance(slot, cx, cy);
         const int back = x - step, ahead = x + step;
         const bool has_back = back >= 0 && back < W, has_ahead = ahead >= 0 && ahead < W;
         if (has_back) consider(slot, best, cells[back], cx, cy);
@@ -228,8 +226,9 @@ class BoundaryLookup {
         const int ahead = x + step;
         if (ahead < 0 || ahead >= W) continue;
         int& slot = cells[x];
-        double best = distance(slot, x, cy);
-        consider(slot, best, cells[ahead], centre_x[static_cast<std::size_t>(x)], cy);
+        const double cx = centre_x(x);
+        double best = distance(slot, cx, cy);
+        consider(slot, best, cells[ahead], cx, cy);
       }
     };
     for (int y = 0; y < H; ++y) pass(y, y > 0 ? row(y - 1) : nullptr, true);
