@@ -81,8 +81,14 @@ struct MatcherParams {
   double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
   double fine_cell_m = 0.25;            ///< raster cell for the finalists' IoU (0.1 measured no better)
   std::size_t members_per_cluster = 1;  ///< best members of each cluster that get verified
-  std::size_t sparse_samples = 300;     ///< source cells of the first, cheap scoring pass
-  std::size_t verify_candidates = 48;   ///< candidates scored on every coarse cell
+  std::size_t sparse_samples = 300;     ///< source wall points of the first, cheap ranking pass
+  std::size_t verify_candidates = 48;   ///< candidates ranked again on all source wall points
+  /// Before ICP, candidates are ranked by the share of the source's walls within this distance of
+  /// the destination's free-space edge. Loose, because an unrefined hypothesis is anchored at one
+  /// pair's segment midpoints and can be off by a few decimetres. Walls, not free-space IoU: a
+  /// partial map lies inside the other's free space under many wrong transforms (IoU saturates),
+  /// so IoU let the right rotation fall out before ICP on hand-held scans (docs/matching.md).
+  double candidate_wall_distance_m = 0.5;
   std::size_t refine_candidates = 8;    ///< candidates refined and scored on the fine raster
   bool refine = true;
   RefineParams refinement;
@@ -150,6 +156,7 @@ struct MatcherParams {
     hypotheses.validate();
     detail::require_positive(coarse_cell_m, "MatcherParams::coarse_cell_m");
     detail::require_positive(fine_cell_m, "MatcherParams::fine_cell_m");
+    detail::require_positive(candidate_wall_distance_m, "MatcherParams::candidate_wall_distance_m");
     if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1) {
       throw parameter_error("MatcherParams: members_per_cluster, sparse_samples, verify_candidates and "
                             "refine_candidates must be >= 1");
@@ -456,7 +463,7 @@ class Matcher {
     if (params.selection == Selection::largest_cluster) {
       finalists = select_largest_cluster(inputs, pairs, hypotheses, clusters, result);
     } else {
-      finalists = select_whole_map(source_map, dest_map, edges, source_raster, dest_raster, source_fine, dest_fine,
+      finalists = select_whole_map(source_map, dest_map, edges, source_raster, source_fine, dest_fine,
                                    hypotheses, clusters, result);
     }
     result.timings.selection_s = detail::seconds_since(stage);
@@ -537,11 +544,11 @@ class Matcher {
     return chosen;
   }
 
-  /// Ours: the best members of every cluster, scored by whole-map IoU on a sparse then a full
-  /// coarse raster; the best few refined by ICP and scored on the fine raster. The answer is the
+  /// Ours: the best members of every cluster, ranked by how much of the source's walls land near
+  /// the destination's (sparse, then all wall points); the best few refined by ICP and scored. The answer is the
   /// best of those, whatever cluster it came from.
   std::vector<detail::ScoredTransform> select_whole_map(const MapView& source, const MapView& dest,
-                                                        const detail::MapEdges& edges, const AreaRaster& source_raster, const AreaRaster& dest_raster,
+                                                        const detail::MapEdges& edges, const AreaRaster& source_raster,
                                                         const AreaRaster& source_fine, const AreaRaster& dest_fine,
                                                         const std::vector<Hypothesis>& hypotheses,
                                                         const std::vector<Cluster>& clusters,
@@ -553,13 +560,21 @@ class Matcher {
       }
     }
     auto by_score = [](const detail::ScoredTransform& a, const detail::ScoredTransform& b) { return a.score > b.score; };
-    // Pass 1: a few hundred source cells each.
-    const std::size_t stride = std::max<std::size_t>(1, source_raster.labelled_count() / params.sparse_samples);
-    for (auto& c : candidates) c.score = free_space_iou(source_raster, dest_raster, c.T, stride);
+    // Unrefined candidates are ranked by the share of the source's walls near the destination's
+    // edge (frontiers left out: a partial map's frontier is not a wall of the other map), first
+    // on a few hundred wall points, then on all of them.
+    const std::vector<Eigen::Vector2d>& walls = edges.source_walls.empty() ? edges.source_points : edges.source_walls;
+    std::vector<Eigen::Vector2d> sparse_walls;
+    const std::size_t stride = std::max<std::size_t>(1, walls.size() / params.sparse_samples);
+    for (std::size_t i = 0; i < walls.size(); i += stride) sparse_walls.push_back(walls[i]);
+    for (auto& c : candidates) {
+      c.score = boundary_inlier_fraction(sparse_walls, edges.dest_lookup, c.T, params.candidate_wall_distance_m);
+    }
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
     if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
-    // Pass 2: every coarse cell.
-    for (auto& c : candidates) c.score = free_space_iou(source_raster, dest_raster, c.T);
+    for (auto& c : candidates) {
+      c.score = boundary_inlier_fraction(walls, edges.dest_lookup, c.T, params.candidate_wall_distance_m);
+    }
     result.statistics.verified = candidates.size();
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
 
