@@ -242,7 +242,9 @@ TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth
   const std::string report = read_text(out + "/report.md");
   CHECK(report.find("![synthetic_5](pairs/001_synthetic_5.png)") != std::string::npos);
   const std::string csv = read_text(out + "/results.csv");
-  CHECK(csv.find("\nsynthetic_5,synthetic,false,") != std::string::npos);
+  CHECK(csv.find("\nsynthetic_5,synthetic,") != std::string::npos);
+  CHECK(csv.find(",p_correct,") != std::string::npos);
+  CHECK(csv.find(",transform_correct,") != std::string::npos);
   CHECK(read_text(out + "/results.json").find("\"correct_non_ambiguous\": 1") != std::string::npos);
 
   // The same pair without ground truth: transforms and times only.

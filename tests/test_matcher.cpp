@@ -137,6 +137,8 @@ TEST_CASE("maps of different buildings do not crash and score lower than the tru
   CHECK_FALSE(wrong.ok);
   CHECK(wrong.reason.find("same building") != std::string::npos);
   CHECK(wrong.evidence.agreement < matcher.params.min_agreement);
+  CHECK(wrong.p_correct < 0.5);
+  CHECK(right.p_correct > 0.5);
   CHECK(right.evidence.agreement > 0.95);
   CHECK(right.evidence.reverse_wall_agreement > 0.95);
   CHECK(right.evidence.free_iou > 0.95);

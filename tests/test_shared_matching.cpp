@@ -1,7 +1,8 @@
 // Every pair of ../shared/pairs.json with the default matcher, its YAML resolutions, the pair's
 // door width where given and reflection allowed: correct by the manifest's correct_if, judged
 // as shared/tools/score.py judges. Ambiguous pairs are reported, not required. Skipped (exit 77)
-// when ../shared is not present.
+// when ../shared is not present. The hand-held scans of ../shared/handheld (a second sensor) are
+// judged too, with a leave-one-place-out check of the decision.
 #include <areamatch/areamatch.hpp>
 #include <areamatch/evaluation.hpp>
 #include <areamatch/io.hpp>
@@ -10,6 +11,11 @@
 #include <doctest/doctest.h>
 
 #include "test_support.hpp"
+
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
 
 using namespace areamatch;
 
@@ -32,20 +38,54 @@ TEST_CASE("every non-ambiguous shared pair is matched correctly") {
   }
 }
 
+namespace {
+
+/// Maps joined by a pair of one building form one building (as `cross_building_pairs` groups them).
+struct Buildings {
+  std::map<std::string, std::string> parent;
+  std::string find(const std::string& m) {
+    if (!parent.count(m)) parent[m] = m;
+    std::string r = m;
+    while (parent[r] != r) r = parent[r];
+    return parent[m] = r;
+  }
+  void join(const std::string& a, const std::string& b) { parent[find(a)] = find(b); }
+};
+
+struct JudgedRow {
+  ManifestPair pair;
+  PairEvaluation row;
+  bool right = false;  ///< the transform is within correct_if (pairs of different buildings: never)
+};
+
+/// The shared pairs of different buildings every CI run checks (every 3rd of the 596), judged
+/// once per process: the rejection test and the decision's cross-validation both use them.
+const std::vector<JudgedRow>& shared_cross_rows(const std::string& shared) {
+  static const std::vector<JudgedRow> rows = [&] {
+    const Manifest manifest = load_manifest(shared + "/pairs.json");
+    const std::vector<ManifestPair> cross = cross_building_pairs(manifest);
+    std::vector<JudgedRow> out;
+    for (std::size_t i = 0; i < cross.size(); i += 3) {
+      out.push_back({cross[i], evaluate_pair(cross[i], manifest.correct_if, EvalOptions{}), false});
+    }
+    return out;
+  }();
+  return rows;
+}
+
+}  // namespace
+
 TEST_CASE("pairs of maps of different shared buildings are rejected (every 3rd of the 596)") {
   const std::string shared = areamatch_test::shared_dir();
   if (shared.empty()) return;
   const Manifest manifest = load_manifest(shared + "/pairs.json");
-  const std::vector<ManifestPair> cross = cross_building_pairs(manifest);
-  CHECK(cross.size() == 596);  // 36 maps of 14 buildings
-  const EvalOptions options;
+  CHECK(cross_building_pairs(manifest).size() == 596);  // 36 maps of 14 buildings
   std::size_t tried = 0, rejected = 0;
-  for (std::size_t i = 0; i < cross.size(); i += 3) {
-    const PairEvaluation row = evaluate_pair(cross[i], manifest.correct_if, options);
-    REQUIRE_MESSAGE(row.failure.empty(), row.failure);
+  for (const JudgedRow& r : shared_cross_rows(shared)) {
+    REQUIRE_MESSAGE(r.row.failure.empty(), r.row.failure);
     ++tried;
-    rejected += row.correct;
-    if (!row.correct) MESSAGE("accepted " << cross[i].name << ": agreement " << row.result.evidence.agreement);
+    rejected += r.row.correct;
+    if (!r.row.correct) MESSAGE("accepted " << r.pair.name << ": agreement " << r.row.result.evidence.agreement);
   }
   MESSAGE(rejected << " of " << tried << " pairs of different buildings rejected");
   CHECK(rejected >= tried * 95 / 100);
@@ -100,4 +140,105 @@ TEST_CASE("manifest: different_buildings pairs, and the cross-building pairs of 
   areamatch_test::write_bytes(dir + "/bad.json",
                               R"({"pairs": [{"name": "n", "source": "a", "destination": "b", "different_buildings": true, )" + truth + "}]}");
   CHECK_THROWS_WITH_AS(load_manifest(dir + "/bad.json"), doctest::Contains("different_buildings has no ground_truth"), format_error);
+}
+
+
+TEST_CASE("hand-held scans: right answers accepted, mirrors and other places refused; the rule fitted without a place judges it") {
+  const std::string shared = areamatch_test::shared_dir();
+  if (shared.empty()) return;
+  if (!areamatch_test::is_dir(shared + "/handheld/maps")) {
+    MESSAGE("skipped: no shared/handheld");
+    return;
+  }
+  const Manifest manifest = load_manifest(shared + "/handheld/pairs.json");
+  EvalOptions plain;  // the pair's door width, no reflection: nothing in this data is mirrored
+  plain.matching.allow_reflection = false;
+  const EvalOptions mirrors;  // reflection allowed
+  std::vector<JudgedRow> rows;
+  std::size_t layout_pairs = 0, layout_ok = 0, scan_pairs = 0, scan_ok = 0, mirrored_accepted = 0;
+  for (const ManifestPair& pair : manifest.pairs) {
+    const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, plain);
+    REQUIRE_MESSAGE(row.failure.empty(), row.failure);
+    MESSAGE(pair.name << ": " << (row.correct ? "correct" : row.transform_correct ? "REJECTED" : "WRONG") << ", p_correct "
+                      << row.result.p_correct << ", agreement " << row.result.evidence.agreement);
+    if (!pair.ambiguous) {
+      const bool to_layout = pair.kind == "sensor_to_layout";
+      (to_layout ? layout_pairs : scan_pairs) += 1;
+      (to_layout ? layout_ok : scan_ok) += row.correct;
+      rows.push_back({pair, row, row.transform_correct});
+    }
+    const PairEvaluation mirrored = evaluate_pair(pair, manifest.correct_if, mirrors);
+    if (mirrored.result.ok && mirrored.result.T_dest_source.reflected) {
+      ++mirrored_accepted;
+      MESSAGE(pair.name << ": a MIRRORED answer accepted with --allow-reflection");
+    }
+  }
+  MESSAGE("scan -> layout " << layout_ok << " / " << layout_pairs << ", scan <-> scan " << scan_ok << " / " << scan_pairs);
+  CHECK(layout_pairs == 22);
+  CHECK(layout_ok >= 20);
+  CHECK(scan_pairs == 36);
+  CHECK(scan_ok >= 33);
+  CHECK(mirrored_accepted == 0);
+
+  const std::vector<ManifestPair> cross = cross_building_pairs(manifest);
+  CHECK(cross.size() == 175);  // F5 (15 maps), HIH (5), KPT4A (5)
+  std::size_t cross_accepted = 0;
+  for (const ManifestPair& pair : cross) {
+    const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, mirrors);
+    REQUIRE_MESSAGE(row.failure.empty(), row.failure);
+    cross_accepted += row.result.ok;
+    if (row.result.ok) MESSAGE("accepted " << pair.name << ": p_correct " << row.result.p_correct);
+    rows.push_back({pair, row, false});
+  }
+  MESSAGE(cross_accepted << " of " << cross.size() << " pairs of different places accepted");
+  CHECK(cross_accepted * 100 <= cross.size());  // >= 99 % rejected
+
+  // Leave one place out: the rule's model fitted without any pair that touches a place (on the
+  // other two places, the shared pairs and every 3rd shared pair of different buildings) must
+  // still judge that place: a rule that only works where it was fitted fails here.
+  const std::size_t handheld_rows = rows.size();
+  const Manifest shared_manifest = load_manifest(shared + "/pairs.json");
+  for (const ManifestPair& pair : shared_manifest.pairs) {
+    if (pair.ambiguous) continue;
+    const PairEvaluation row = evaluate_pair(pair, shared_manifest.correct_if, EvalOptions{});
+    rows.push_back({pair, row, row.transform_correct});
+  }
+  for (const JudgedRow& r : shared_cross_rows(shared)) rows.push_back(r);
+  Buildings buildings;
+  for (const JudgedRow& r : rows) {
+    buildings.find(r.pair.source);
+    buildings.find(r.pair.destination);
+    if (!r.pair.different_buildings) buildings.join(r.pair.source, r.pair.destination);
+  }
+  std::set<std::string> places;
+  for (std::size_t i = 0; i < handheld_rows; ++i) places.insert(buildings.find(rows[i].pair.source));
+  REQUIRE(places.size() == 3);
+  const MatcherParams defaults;
+  std::size_t right = 0, false_rejects = 0, wrong = 0, false_accepts = 0;
+  for (const std::string& held : places) {
+    std::vector<DecisionSample> train;
+    for (const JudgedRow& r : rows) {
+      if (buildings.find(r.pair.source) != held && buildings.find(r.pair.destination) != held) {
+        train.push_back({decision_features(r.row.result), r.right});
+      }
+    }
+    const DecisionParams model = fit_decision(train);
+    for (std::size_t i = 0; i < handheld_rows; ++i) {
+      const JudgedRow& r = rows[i];
+      if (buildings.find(r.pair.source) != held) continue;  // each row once, under its source's place
+      const bool accepted = r.row.result.evidence.agreement >= defaults.min_agreement ||
+                            p_correct(decision_features(r.row.result), model) >= defaults.decision.accept_p_correct;
+      if (r.right) {
+        ++right;
+        false_rejects += !accepted;
+      } else {
+        ++wrong;
+        false_accepts += accepted;
+      }
+    }
+  }
+  MESSAGE("leave one place out: " << false_rejects << " of " << right << " right answers rejected, " << false_accepts << " of "
+                                  << wrong << " wrong ones accepted");
+  CHECK(false_rejects * 100 <= right * 5);
+  CHECK(false_accepts * 100 <= wrong * 2);
 }

@@ -7,6 +7,7 @@
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
 //
 // Exit status: 0 success, 1 no acceptable result (matching), 2 bad input or usage.
+#include "calibrate.hpp"
 #include "cli_args.hpp"
 
 #include <areamatch/areamatch.hpp>
@@ -32,6 +33,13 @@ namespace {
 using areamatch::detail::format_double;
 using areamatch::detail::format_fixed;
 using areamatch_cli::Args;
+using areamatch_cli::assign_buildings;
+using areamatch_cli::CalibrationRow;
+using areamatch_cli::DecisionCounts;
+using areamatch_cli::leave_one_building_out;
+using areamatch_cli::percent;
+using areamatch_cli::read_calibration_rows;
+using areamatch_cli::reliability_svg;
 using areamatch_cli::UsageError;
 
 const std::set<std::string> kMapFlags = {"negate", "help"};
@@ -130,7 +138,12 @@ const char* kGenerateHelp =
     "  --noise M              wall jitter, standard deviation in metres (default 0.03)\n"
     "  --clutter N            up to N furniture blobs per room (default 3)\n"
     "  --explored F           share of rooms explored, 0..1 (default 1)\n"
-    "  --speckles D           speckles per square metre of free space (default 0.02)\n";
+    "  --speckles D           speckles per square metre of free space (default 0.02)\n"
+    "  --style S              robot (default: a laser SLAM map) or handheld: a hand-held depth-sensor scan\n"
+    "                         of part of the floor (0.02 m cells, thin ragged walls seen from one side with\n"
+    "                         gaps, closed doors, furniture, 40 % of the rooms near one start, 0.3 m drift)\n"
+    "                         onto a line-drawn layout (0.025 m cells, 0.05 m lines); the options above\n"
+    "                         still override (docs/synthetic.md)\n";
 
 areamatch::CorridorLayout parse_layout(const std::string& name) {
   static const std::map<std::string, areamatch::CorridorLayout> kinds = {
@@ -150,9 +163,19 @@ std::string matrix_json(const areamatch::PixelTransform& m) {
 /// Writes one synthetic pair into `out` and returns its manifest entry (paths relative to
 /// `out`'s parent when `prefix` names `out`, else to `out`).
 std::string generate_pair(const std::string& out, const std::string& prefix, std::uint64_t seed,
-                          const areamatch::BuildingParams& building_params, const areamatch::RobotMapParams& robot_params) {
-  const auto building = areamatch::generate_building(building_params, seed);
+                          const areamatch::BuildingParams& building_params, const areamatch::RobotMapParams& robot_params,
+                          double layout_line_width_m) {
+  auto building = areamatch::generate_building(building_params, seed);
   const auto robot = areamatch::make_robot_map(building, robot_params, seed);
+  // A line-drawn floor plan (hand-held style): walls as thin lines, drawn after the scan was made
+  // from the building as built.
+  // Thinning the walls also shortens each wall end by half the thickness it loses, so the drawn
+  // doorways are that much wider than the built ones: the segmenter's door width follows.
+  double door_width_m = building_params.door_width_m;
+  if (layout_line_width_m > 0.0) {
+    building.layout = areamatch::layout_line_drawing(building, layout_line_width_m);
+    door_width_m += building_params.wall_thickness_m - layout_line_width_m;
+  }
 
   std::error_code ec;
   std::filesystem::create_directories(out, ec);
@@ -171,7 +194,7 @@ std::string generate_pair(const std::string& out, const std::string& prefix, std
   std::ostringstream entry;
   entry << "  {\n   \"name\": \"synthetic_" << seed << "\",\n   \"kind\": \"synthetic\",\n"
         << "   \"source\": \"" << prefix << "robot.yaml\",\n   \"destination\": \"" << prefix << "layout.yaml\",\n"
-        << "   \"door_width_m\": " << format_double(building_params.door_width_m) << ",\n"
+        << "   \"door_width_m\": " << format_double(door_width_m) << ",\n"
         << "   \"ground_truth\": {\"pixel_transform\": " << matrix_json(robot.pixel_transform)
         << ", \"scale\": " << format_double(robot_params.resolution / building_params.resolution)
         << ", \"reflected\": " << (robot.T_dest_source.reflected ? "true" : "false") << "}\n  }";
@@ -181,7 +204,7 @@ std::string generate_pair(const std::string& out, const std::string& prefix, std
 int run_generate(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"mirror", "help"},
                   {"seed", "count", "width", "height", "layout", "door-width", "rotation", "robot-resolution", "noise",
-                   "clutter", "explored", "speckles"});
+                   "clutter", "explored", "speckles", "style"});
   if (args.flag("help")) {
     std::cout << kGenerateHelp;
     return 0;
@@ -191,19 +214,32 @@ int run_generate(const std::vector<std::string>& tokens) {
   const auto first_seed = static_cast<std::uint64_t>(args.integer("seed", 0, 1LL << 62).value_or(1));
   const auto count = args.integer("count", 1, 10000);
 
+  const std::string style = args.text("style").value_or("robot");
+  if (style != "robot" && style != "handheld") throw UsageError("--style must be robot or handheld, got '" + style + "'");
+  const bool handheld = style == "handheld";
   areamatch::BuildingParams building_params;
+  if (handheld) building_params.resolution = 0.025;  // the hand-held layouts: 0.013-0.025 m per pixel
+  const double layout_line_width_m = handheld ? 0.05 : 0.0;
   building_params.width_m = args.number("width", true).value_or(30.0);
   building_params.height_m = args.number("height", true).value_or(20.0);
   building_params.door_width_m = args.number("door-width", true).value_or(0.9);
   building_params.layout = parse_layout(args.text("layout").value_or("auto"));
   areamatch::RobotMapParams robot_params;
+  if (handheld) {
+    robot_params = areamatch::RobotMapParams::handheld();
+  } else {
+    robot_params.wall_noise_m = 0.03;
+    robot_params.max_clutter_per_room = 3;
+    robot_params.speckle_per_m2 = 0.02;
+  }
   const auto rotation_deg = args.number("rotation");
   robot_params.mirror = args.flag("mirror");
-  robot_params.resolution = args.number("robot-resolution", true).value_or(0.05);
-  robot_params.wall_noise_m = args.number("noise", false, true).value_or(0.03);
-  robot_params.max_clutter_per_room = static_cast<int>(args.integer("clutter", 0, 100).value_or(3));
-  robot_params.explored_fraction = args.number("explored", false, true).value_or(1.0);
-  robot_params.speckle_per_m2 = args.number("speckles", false, true).value_or(0.02);
+  robot_params.resolution = args.number("robot-resolution", true).value_or(robot_params.resolution);
+  robot_params.wall_noise_m = args.number("noise", false, true).value_or(robot_params.wall_noise_m);
+  robot_params.max_clutter_per_room =
+      static_cast<int>(args.integer("clutter", 0, 100).value_or(robot_params.max_clutter_per_room));
+  robot_params.explored_fraction = args.number("explored", false, true).value_or(robot_params.explored_fraction);
+  robot_params.speckle_per_m2 = args.number("speckles", false, true).value_or(robot_params.speckle_per_m2);
 
   std::vector<std::string> entries;
   for (std::uint64_t seed = first_seed; seed < first_seed + static_cast<std::uint64_t>(count.value_or(1)); ++seed) {
@@ -211,8 +247,8 @@ int run_generate(const std::vector<std::string>& tokens) {
     const double deg = rotation_deg ? *rotation_deg : count ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
     robot_params.rotation_rad = deg * areamatch::pi / 180.0;
     const std::string folder = "pair_" + std::to_string(seed);
-    entries.push_back(count ? generate_pair(out + "/" + folder, folder + "/", seed, building_params, robot_params)
-                            : generate_pair(out, "", seed, building_params, robot_params));
+    entries.push_back(count ? generate_pair(out + "/" + folder, folder + "/", seed, building_params, robot_params, layout_line_width_m)
+                            : generate_pair(out, "", seed, building_params, robot_params, layout_line_width_m));
   }
   std::ostringstream manifest;
   manifest << "{\n \"description\": \"Synthetic pairs written by 'areamatch generate'. pixel_transform maps a source "
@@ -315,6 +351,8 @@ const char* kMatchHelp =
     "                          result's scale is the estimate (about 10x slower)\n"
     "  --paper                 the paper's matching as written (k = 3, largest angular cluster)\n"
     "  --k N                   mutual nearest neighbours per area (default 10; paper 3)\n"
+    "  --min-p-correct P       reject when the calibrated probability that the answer is right is below P\n"
+    "                          (default 0: off; see docs/evaluation.md)\n"
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A       reject when the maps agree less than A under the best transform: not the\n"
     "                          same building (default 0.835; 0 always answers; see docs/evaluation.md)\n"
@@ -328,7 +366,7 @@ const char* kMatchHelp =
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"allow-reflection", "paper", "json", "estimate-scale", "help"},
                   {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
-                   "min-score", "min-agreement", "png", "svg", "labels"});
+                   "min-score", "min-agreement", "min-p-correct", "png", "svg", "labels"});
   if (args.flag("help")) {
     std::cout << kMatchHelp;
     return 0;
@@ -347,6 +385,7 @@ int run_match(const std::vector<std::string>& tokens) {
   if (const auto k = args.integer("k", 1, 1000)) options.k = static_cast<std::size_t>(*k);
   options.min_score = args.number("min-score", false, true);
   options.min_agreement = args.number("min-agreement", false, true);
+  options.min_p_correct = args.number("min-p-correct", false, true);
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
@@ -379,7 +418,9 @@ int run_match(const std::vector<std::string>& tokens) {
               << " deg, translation (" << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3)
               << ") m" << (result.scale_estimated ? ", scale " + format_fixed(T.scale, 4) : std::string())
               << (T.reflected ? ", reflected" : "") << ", score " << format_fixed(result.score, 3)
-              << ", confidence " << format_fixed(result.confidence, 3) << ", " << result.matched_areas.size()
+              << ", p_correct " << format_fixed(result.p_correct, 3) << ", confidence " << format_fixed(result.confidence, 3)
+              << (result.ambiguous ? " (ambiguous: another transform scores almost as well)" : "") << ", "
+              << result.matched_areas.size()
               << " matched areas (" << result.statistics.source_areas << " / " << result.statistics.dest_areas
               << " areas), " << format_fixed(1000.0 * result.timings.total_s, 1) << " ms (match "
               << format_fixed(1000.0 * result.timings.match_s, 1) << " ms)\n";
@@ -408,6 +449,7 @@ const char* kEvalHelp =
     "  --no-reflection    do not try mirror images (a pair's \"allow_reflection\" overrides either way)\n"
     "  --paper            the paper's matching as written\n"
     "  --k N              mutual nearest neighbours per area (default 10; paper 3)\n"
+    "  --min-p-correct P  reject when the calibrated probability of a right answer is below P (default 0: off)\n"
     "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A  reject when the maps agree less than A under the best transform (default 0.835)\n"
     "  --estimate-scale   estimate each source's scale (its resolution may be off by 0.5-2x); the summary\n"
@@ -443,7 +485,8 @@ std::string picture_name(std::size_t index, const std::string& pair_name) {
 
 int run_eval(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "estimate-scale", "help"},
-                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "picture-scale", "source-resolution"});
+                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "min-p-correct", "picture-scale",
+                   "source-resolution"});
   if (args.flag("help")) {
     std::cout << kEvalHelp;
     return 0;
@@ -456,6 +499,7 @@ int run_eval(const std::vector<std::string>& tokens) {
   if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
   options.matching.min_score = args.number("min-score", false, true);
   options.matching.min_agreement = args.number("min-agreement", false, true);
+  options.matching.min_p_correct = args.number("min-p-correct", false, true);
   options.matching.estimate_scale = args.flag("estimate-scale");
   options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);
   const auto picture_scale = args.integer("picture-scale", 1, 100);
@@ -522,6 +566,107 @@ int run_eval(const std::vector<std::string>& tokens) {
   return 0;
 }
 
+// ----------------------------------------------------------------------------------- calibrate
+
+const char* kCalibrateHelp =
+    "usage: areamatch calibrate RESULTS.csv [RESULTS.csv ...] [options]\n"
+    "Fits the accept/reject decision (p_correct, include/areamatch/match/decision.hpp) on the rows of\n"
+    "'areamatch eval --out DIR' runs (DIR/results.csv; run them with --cross-buildings for pairs that\n"
+    "must be rejected) and measures it by leave-one-building-out cross-validation: each building's\n"
+    "pairs are judged by a model fitted without any pair that touches that building (maps joined by a\n"
+    "pair of one building are one building). A row is right when its transform is within the\n"
+    "manifest's correct_if; pairs of different buildings are wrong; ambiguous pairs are left out.\n"
+    "The rule judged is the matcher's: accepted when agreement >= A or p_correct >= P. Prints per\n"
+    "building and in total the false rejects (right answers refused) and false accepts (wrong answers\n"
+    "accepted), the same in-sample, the totals of other rules, the coefficients fitted on all rows and\n"
+    "a reliability table.\n"
+    "Options:\n"
+    "  --l2 L             L2 penalty on the weights (default 1)\n"
+    "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.9)\n"
+    "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
+    "  --svg OUT.svg      the reliability diagram (cross-validated)\n";
+
+int run_calibrate(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"help"}, {"l2", "accept-p", "min-agreement", "svg"});
+  if (args.flag("help")) {
+    std::cout << kCalibrateHelp;
+    return 0;
+  }
+  if (args.positional().empty()) throw UsageError("expected at least one RESULTS.csv");
+  const double l2 = args.number("l2", true).value_or(1.0);
+  areamatch::DecisionParams base;
+  base.accept_p_correct = args.number("accept-p", false, true).value_or(base.accept_p_correct);
+  base.validate();
+  const double gate = args.number("min-agreement", false, true).value_or(areamatch::MatcherParams{}.min_agreement);
+  std::vector<CalibrationRow> rows;
+  for (const auto& path : args.positional()) {
+    auto more = read_calibration_rows(path);
+    rows.insert(rows.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+  }
+  const std::vector<std::string> buildings = assign_buildings(rows);
+  std::vector<areamatch::DecisionSample> all;
+  for (const auto& r : rows) all.push_back(r.sample);
+  const areamatch::DecisionParams fitted = areamatch::fit_decision(all, l2, base);
+  const std::vector<double> predicted = leave_one_building_out(rows, buildings.size(), l2, base);
+
+  auto rule = [&](const CalibrationRow& r, double p, double accept_p, double min_agreement) {
+    return p >= accept_p || r.agreement >= min_agreement;
+  };
+  std::vector<DecisionCounts> per_building(buildings.size());
+  DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const CalibrationRow& r = rows[i];
+    const bool accepted = rule(r, predicted[i], base.accept_p_correct, gate);
+    cv_total.add(r.sample.correct, r.different_buildings, accepted);
+    in_sample_total.add(r.sample.correct, r.different_buildings,
+                        rule(r, areamatch::p_correct(r.sample.features, fitted), base.accept_p_correct, gate));
+    cv_model_half.add(r.sample.correct, r.different_buildings, rule(r, predicted[i], 0.5, 2.0));
+    gate_only.add(r.sample.correct, r.different_buildings, rule(r, 0.0, 2.0, gate));
+    per_building[static_cast<std::size_t>(r.source_building)].add(r.sample.correct, r.different_buildings, accepted);
+    if (r.dest_building != r.source_building) {
+      per_building[static_cast<std::size_t>(r.dest_building)].add(r.sample.correct, r.different_buildings, accepted);
+    }
+  }
+  std::cout << rows.size() << " rows, " << buildings.size() << " buildings; rule: agreement >= " << format_double(gate)
+            << " or p_correct >= " << format_double(base.accept_p_correct) << "\n\n"
+            << "leave-one-building-out (a pair of two buildings counts under both):\n"
+            << "building | right answers | false rejects | wrong answers of one building | accepted | pairs of different buildings | accepted\n";
+  auto line = [](const std::string& name, const DecisionCounts& c) {
+    return name + " | " + std::to_string(c.right) + " | " + std::to_string(c.right_rejected) + " (" +
+           percent(c.right_rejected, c.right) + ") | " + std::to_string(c.wrong_same) + " | " +
+           std::to_string(c.wrong_same_accepted) + " | " + std::to_string(c.different) + " | " +
+           std::to_string(c.different_accepted) + " (" + percent(c.different_accepted, c.different) + ")\n";
+  };
+  for (std::size_t b = 0; b < buildings.size(); ++b) std::cout << line(buildings[b], per_building[b]);
+  std::cout << line("total (cross-validated)", cv_total) << line("total (in-sample)", in_sample_total)
+            << line("other rule: p_correct >= 0.5 alone (cross-validated)", cv_model_half)
+            << line("other rule: agreement >= " + format_double(gate) + " alone", gate_only);
+  std::cout << "\nfitted on all rows: bias = " << format_fixed(fitted.bias, 3) << ", weights = {";
+  for (std::size_t i = 0; i < fitted.weights.size(); ++i) {
+    std::cout << (i ? ", " : "") << format_fixed(fitted.weights[i], 3);
+  }
+  std::cout << "}  (" ;
+  for (std::size_t i = 0; i < areamatch::DecisionFeatures::size; ++i) {
+    std::cout << (i ? ", " : "") << areamatch::DecisionFeatures::names[i];
+  }
+  std::cout << ")\n\nreliability (cross-validated): bin | rows | mean predicted | observed right\n";
+  constexpr int bins = 10;
+  for (int b = 0; b < bins; ++b) {
+    double sum = 0.0, right = 0.0;
+    std::size_t n = 0;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (std::clamp(static_cast<int>(predicted[i] * bins), 0, bins - 1) != b) continue;
+      sum += predicted[i];
+      right += rows[i].sample.correct;
+      ++n;
+    }
+    std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << n << " | "
+              << (n ? format_fixed(sum / n, 3) : "-") << " | " << (n ? format_fixed(right / n, 3) : "-") << "\n";
+  }
+  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(predicted, rows, bins));
+  return 0;
+}
+
 // ---------------------------------------------------------------------------------------- main
 
 const char* kMainHelp =
@@ -533,6 +678,7 @@ const char* kMainHelp =
     "  match SOURCE DEST find the transform between two maps of one building\n"
     "  eval MANIFEST     match every pair of a manifest and score it against its ground truth\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
+    "  calibrate CSV...  fit the accept/reject decision on eval results, cross-validated by building\n"
     "  version           print the version\n"
     "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n";
 
@@ -545,7 +691,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}, {"eval", run_eval}};
+      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}, {"eval", run_eval}, {"calibrate", run_calibrate}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -32,6 +32,7 @@
 #include "match/clusterer.hpp"
 #include "match/correspondence.hpp"
 #include "match/costs.hpp"
+#include "match/decision.hpp"
 #include "match/evidence.hpp"
 #include "match/features.hpp"
 #include "match/hypotheses.hpp"
@@ -108,10 +109,17 @@ struct MatcherParams {
   double different_translation_m = 1.0;
   /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected (ok = false).
   double min_score = 0.25;
+  /// The calibrated probability that the answer is right (match/decision.hpp), reported as
+  /// `MatchResult::p_correct`. An answer whose agreement is below `min_agreement` is still
+  /// accepted when p_correct ≥ `decision.accept_p_correct`; below `decision.min_p_correct` it is
+  /// rejected (off by default).
+  DecisionParams decision;
   /// Below this `MatchEvidence::agreement` the result is rejected as "not the same building".
   /// Calibrated on the real pairs of shared/pairs.json, all 596 pairs of maps of different
   /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): every true pair
   /// scored 0.840 or more; 2 of 2876 pairs of different buildings scored above 0.835 (at most 0.845).
+  /// Alone it rejects right answers of unseen buildings and hand-held scans (agreement 0.77-0.83):
+  /// `decision.accept_p_correct` lets the calibrated model accept those.
   double min_agreement = 0.835;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
   /// the two wall agreements). A map confirmed on little of the other's free space is less certain.
@@ -143,6 +151,8 @@ struct MatcherParams {
     p.refine = false;
     p.min_score = 0.0;          // the paper has no rejection rule:
     p.min_agreement = 0.0;
+    p.decision.min_p_correct = 0.0;
+    p.decision.accept_p_correct = 1.0;
     p.min_confidence = -1.0;    // it always answers
     return p;
   }
@@ -166,6 +176,7 @@ struct MatcherParams {
     detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");
     detail::require_non_negative(min_score, "MatcherParams::min_score");
     detail::require_non_negative(min_agreement, "MatcherParams::min_agreement");
+    decision.validate();
     if (!(agreement_iou_weight >= 0.0 && agreement_iou_weight <= 1.0)) {
       throw parameter_error("MatcherParams::agreement_iou_weight must be in [0, 1]");
     }
@@ -478,20 +489,33 @@ class Matcher {
                                                 best.T, params.correspondences);
     result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
+    result.ambiguous = result.confidence < params.ambiguity_margin;
+    result.p_correct = p_correct(decision_features(result), params.decision);
 
     if (params.selection == Selection::whole_map && result.score < params.min_score) {
       return finish("best whole-map score " + detail::format_fixed(result.score, 3) + " is below min_score " +
                     detail::format_double(params.min_score) + ": the maps do not match");
     }
-    if (result.evidence.agreement < params.min_agreement) {
+    const bool model_sure = result.p_correct >= params.decision.accept_p_correct;
+    if (result.evidence.agreement < params.min_agreement && !model_sure) {
       return finish("the maps agree too little under the best transform to be the same building: agreement " +
                     detail::format_fixed(result.evidence.agreement, 3) + " < min_agreement " +
                     detail::format_double(params.min_agreement) + " (the destination's walls near the source's " +
                     "free space explained: " + detail::format_fixed(result.evidence.reverse_wall_agreement, 3) +
                     ", the source's near the destination's: " + detail::format_fixed(result.evidence.forward_wall_agreement, 3) +
-                    ", free-space IoU " + detail::format_fixed(result.evidence.free_iou, 3) + ")");
+                    ", free-space IoU " + detail::format_fixed(result.evidence.free_iou, 3) + "; p_correct " +
+                    detail::format_fixed(result.p_correct, 3) + " < accept_p_correct " +
+                    detail::format_double(params.decision.accept_p_correct) + ")");
     }
-    result.ambiguous = result.confidence < params.ambiguity_margin;
+    if (result.p_correct < params.decision.min_p_correct) {
+      return finish("the answer is more likely wrong than right: p_correct " + detail::format_fixed(result.p_correct, 3) +
+                    " < " + detail::format_double(params.decision.min_p_correct) + " (wall agreement " +
+                    detail::format_fixed(result.evidence.forward_wall_agreement, 3) + " / " +
+                    detail::format_fixed(result.evidence.reverse_wall_agreement, 3) + ", rooms " +
+                    detail::format_fixed(result.evidence.room_agreement, 3) + ", margin " +
+                    detail::format_fixed(result.confidence, 3) + ", overlap " +
+                    detail::format_fixed(result.evidence.overlap_m2, 1) + " m²)");
+    }
     if (result.confidence < params.min_confidence) {
       return finish("ambiguous: a different transform scores within " + detail::format_fixed(result.confidence, 3) +
                     " of the best (min_confidence " + detail::format_double(params.min_confidence) + ")");

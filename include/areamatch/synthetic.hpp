@@ -24,7 +24,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
@@ -106,6 +108,42 @@ struct RobotMapParams {
   bool unknown_outside = true;             ///< outside the walls: unknown (else occupied)
   double margin_m = 1.0;                   ///< space around the building inside the image
 
+  // Hand-held depth-sensor maps (see `handheld()`, calibrated in docs/synthetic.md).
+  /// Walls are seen as a layer this thick on the explored side only, the rest of the wall and what
+  /// lies behind it unknown (0: whole walls, as a laser SLAM map draws them).
+  double seen_wall_m = 0.0;
+  /// Share of the seen wall surface that is missing (free space meets unknown there), in patches
+  /// of `wall_gap_patch_m`.
+  double wall_gap_fraction = 0.0;
+  double wall_gap_patch_m = 1.0;
+  /// Share of the explored rooms' doors shown closed (a wall across the doorway).
+  double closed_door_fraction = 0.0;
+  /// The explored rooms are those nearest a random start room (one walk), not a random choice.
+  bool explore_from_start = false;
+  /// The corridor is explored only within this distance of an explored room's door (0: all of it).
+  double corridor_reach_m = 0.0;
+
+  /// A hand-held depth-sensor scan of part of a floor: 0.02 m cells, walls seen as a thin ragged
+  /// layer with gaps, some doors closed, furniture, 40 % of the rooms near one start and the
+  /// corridor near them, and a smooth drift of 0.3 m (docs/synthetic.md: measured against
+  /// shared/handheld).
+  static RobotMapParams handheld() {
+    RobotMapParams p;
+    p.resolution = 0.02;
+    p.wall_noise_m = 0.015;
+    p.wall_bend_m = 0.3;
+    p.max_clutter_per_room = 4;
+    p.explored_fraction = 0.4;
+    p.speckle_per_m2 = 0.05;
+    p.margin_m = 2.0;
+    p.seen_wall_m = 0.06;
+    p.wall_gap_fraction = 0.25;
+    p.closed_door_fraction = 0.25;
+    p.explore_from_start = true;
+    p.corridor_reach_m = 5.0;
+    return p;
+  }
+
   void validate() const;
 };
 
@@ -159,6 +197,12 @@ inline void RobotMapParams::validate() const {
   non_negative(wall_bend_m, "wall_bend_m");
   non_negative(speckle_per_m2, "speckle_per_m2");
   non_negative(margin_m, "margin_m");
+  non_negative(seen_wall_m, "seen_wall_m");
+  non_negative(corridor_reach_m, "corridor_reach_m");
+  detail::require_positive(wall_gap_patch_m, "RobotMapParams::wall_gap_patch_m");
+  for (const auto& [v, name] : {std::pair{wall_gap_fraction, "wall_gap_fraction"}, std::pair{closed_door_fraction, "closed_door_fraction"}}) {
+    if (!(v >= 0.0 && v <= 1.0)) throw parameter_error(std::string("RobotMapParams::") + name + " must be in [0, 1]");
+  }
   if (max_clutter_per_room < 0) throw parameter_error("RobotMapParams::max_clutter_per_room must be >= 0");
   if (!(explored_fraction >= 0.0 && explored_fraction <= 1.0)) {
     throw parameter_error("RobotMapParams::explored_fraction must be in [0, 1]");
@@ -329,6 +373,42 @@ inline void place_rooms_along(const CorridorPiece& corridor, int side, const Bui
   }
 }
 
+/// A uniform number in [0, 1) from a seed and two integers (a fixed hash, not a stream), for
+/// noise that depends on where, not on the order cells are visited.
+inline double hash_unit(std::uint64_t seed, std::int64_t a, std::int64_t b) {
+  std::uint64_t z = seed ^ (static_cast<std::uint64_t>(a) * 0x9E3779B97F4A7C15ull) ^
+                    (static_cast<std::uint64_t>(b) * 0xC2B2AE3D27D4EB4Full);
+  z = (z ^ (z >> 30)) * 0xBF58476D1CE4E5B9ull;
+  z = (z ^ (z >> 27)) * 0x94D049BB133111EBull;
+  z ^= z >> 31;
+  return static_cast<double>(z >> 11) * (1.0 / 9007199254740992.0);
+}
+
+/// Per cell of `grid`, the distance in metres to the nearest seed cell (a two-pass 3-4 chamfer
+/// transform: within 8 % of Euclidean), +infinity without seeds.
+inline std::vector<double> chamfer_distance(const OccupancyGrid& grid, const std::vector<bool>& seed) {
+  const int w = grid.width(), h = grid.height();
+  constexpr double inf = std::numeric_limits<double>::infinity();
+  std::vector<double> d(seed.size(), inf);
+  for (std::size_t i = 0; i < seed.size(); ++i) if (seed[i]) d[i] = 0.0;
+  auto relax = [&](int c, int r, int dc, int dr, double step) {
+    const int nc = c + dc, nr = r + dr;
+    if (nc < 0 || nr < 0 || nc >= w || nr >= h) return;
+    double& here = d[static_cast<std::size_t>(r) * w + c];
+    here = std::min(here, d[static_cast<std::size_t>(nr) * w + nc] + step);
+  };
+  for (int r = 0; r < h; ++r)
+    for (int c = 0; c < w; ++c) {
+      relax(c, r, -1, 0, 3.0), relax(c, r, -1, -1, 4.0), relax(c, r, 0, -1, 3.0), relax(c, r, 1, -1, 4.0);
+    }
+  for (int r = h - 1; r >= 0; --r)
+    for (int c = w - 1; c >= 0; --c) {
+      relax(c, r, 1, 0, 3.0), relax(c, r, 1, 1, 4.0), relax(c, r, 0, 1, 3.0), relax(c, r, -1, 1, 4.0);
+    }
+  for (double& v : d) v *= grid.resolution() / 3.0;
+  return d;
+}
+
 }  // namespace detail
 
 /// Generates a building (see the file comment). Throws `parameter_error` for invalid parameters.
@@ -430,15 +510,59 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
   const OccupancyGrid& layout = building.layout;
   RobotMap robot;
 
-  // Which rooms were explored: a seeded choice of round(fraction · rooms) rooms.
+  // Which rooms were explored: a seeded choice of round(fraction · rooms) rooms, or (one walk)
+  // the rooms nearest a seeded start room.
   std::vector<int> rooms;
   for (const auto& area : building.areas) if (!area.corridor) rooms.push_back(area.id);
   for (std::size_t i = rooms.size(); i > 1; --i) std::swap(rooms[i - 1], rooms[random.integer(0, static_cast<int>(i) - 1)]);
+  if (params.explore_from_start && !rooms.empty()) {
+    auto centre = [&](int id) {
+      Point2 c(0.0, 0.0);
+      bg::centroid(building.areas[static_cast<std::size_t>(id)].polygon, c);
+      return Eigen::Vector2d(c.x(), c.y());
+    };
+    const Eigen::Vector2d start = centre(rooms.front());
+    std::stable_sort(rooms.begin(), rooms.end(), [&](int a, int b) { return (centre(a) - start).norm() < (centre(b) - start).norm(); });
+  }
   rooms.resize(static_cast<std::size_t>(std::lround(params.explored_fraction * rooms.size())));
   std::vector<bool> explored(building.areas.size(), false);
   for (const auto& area : building.areas) if (area.corridor) explored[area.id] = true;
   for (int id : rooms) explored[id] = true;
   for (std::size_t id = 0; id < explored.size(); ++id) if (explored[id]) robot.explored_areas.push_back(static_cast<int>(id));
+
+  // Doors of explored rooms: some shown closed; the corridor is seen near the others' rooms.
+  std::vector<const SyntheticDoor*> closed_doors, explored_doors;
+  for (const auto& d : building.doors) {
+    if (d.area_a < 0 || !explored[static_cast<std::size_t>(d.area_a)]) continue;
+    explored_doors.push_back(&d);
+    // Drawn only when asked for, so that maps without closed doors keep their random stream.
+    if (params.closed_door_fraction > 0.0 && random.uniform() < params.closed_door_fraction) closed_doors.push_back(&d);
+  }
+  auto corridor_seen = [&](const Eigen::Vector2d& p) {
+    if (params.corridor_reach_m <= 0.0) return true;
+    return std::any_of(explored_doors.begin(), explored_doors.end(),
+                       [&](const SyntheticDoor* d) { return (d->position - p).norm() <= params.corridor_reach_m; });
+  };
+  auto in_closed_door = [&](const Eigen::Vector2d& p) {
+    return std::any_of(closed_doors.begin(), closed_doors.end(), [&](const SyntheticDoor* d) {
+      return (d->position - p).norm() <= 0.5 * d->width_m + building.params.wall_thickness_m;
+    });
+  };
+  // Seen walls: layout cells within seen_wall_m of explored free space.
+  std::vector<double> to_explored;
+  if (params.seen_wall_m > 0.0) {
+    std::vector<bool> seeds(building.labels.size(), false);
+    for (int r = 0; r < layout.height(); ++r) {
+      for (int c = 0; c < layout.width(); ++c) {
+        const std::size_t i = layout.index(c, r);
+        const int label = building.labels[i];
+        if (label < 0 || !explored[static_cast<std::size_t>(label)]) continue;
+        seeds[i] = !building.areas[static_cast<std::size_t>(label)].corridor || corridor_seen(layout.cell_center(c, r));
+      }
+    }
+    to_explored = detail::chamfer_distance(layout, seeds);
+  }
+  const std::uint64_t gap_seed = seed ^ 0x5EEDull;
 
   // Furniture: boxes against a wall of explored rooms, kept 1 m clear of doors.
   for (const auto& area : building.areas) {
@@ -517,6 +641,21 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
         const int label = building.labels[layout.index(cell.x(), cell.y())];
         if (state == CellState::unknown) state = outside;
         if (state == CellState::free && label >= 0 && !explored[label]) state = CellState::unknown;
+        if (state == CellState::free && label >= 0 && building.areas[static_cast<std::size_t>(label)].corridor &&
+            !corridor_seen(p)) {
+          state = CellState::unknown;
+        }
+        if (state == CellState::free && label < 0 && in_closed_door(p)) state = CellState::occupied;
+        if (state == CellState::free && label < 0 && !to_explored.empty() &&
+            to_explored[layout.index(cell.x(), cell.y())] > building.params.wall_thickness_m + params.seen_wall_m) {
+          state = CellState::unknown;  // a doorway the scan did not come near
+        }
+        if (!to_explored.empty() && state != CellState::free && state != outside) {
+          const double d = to_explored[layout.index(cell.x(), cell.y())];
+          const auto patch = [&](double v) { return static_cast<std::int64_t>(std::floor(v / params.wall_gap_patch_m)); };
+          const bool gap = detail::hash_unit(gap_seed, patch(p.x()), patch(p.y())) < params.wall_gap_fraction;
+          state = d <= params.seen_wall_m && !gap ? CellState::occupied : CellState::unknown;
+        }
         if (state == CellState::free) {
           const Point2 q(p.x(), p.y());
           for (const auto& b : clutter_boxes) {
@@ -542,6 +681,31 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
     }
   }
   return robot;
+}
+
+/// The layout drawn as a floor plan is: every wall as a line `line_width_m` wide along its
+/// middle, the rest of the wall free on a room's side and unknown outside (hand-held datasets give
+/// layouts as line drawings). Same frame and cells as `building.layout`.
+inline OccupancyGrid layout_line_drawing(const SyntheticBuilding& building, double line_width_m) {
+  detail::require_positive(line_width_m, "layout_line_drawing: line_width_m");
+  const OccupancyGrid& layout = building.layout;
+  std::vector<bool> free_seed(layout.cells().size()), unknown_seed(layout.cells().size());
+  for (std::size_t i = 0; i < free_seed.size(); ++i) {
+    free_seed[i] = layout.cells()[i] == CellState::free;
+    unknown_seed[i] = layout.cells()[i] == CellState::unknown;
+  }
+  const std::vector<double> to_free = detail::chamfer_distance(layout, free_seed);
+  const std::vector<double> to_unknown = detail::chamfer_distance(layout, unknown_seed);
+  const double keep = 0.5 * (building.params.wall_thickness_m - line_width_m);
+  OccupancyGrid out = layout;
+  for (int r = 0; r < layout.height(); ++r) {
+    for (int c = 0; c < layout.width(); ++c) {
+      const std::size_t i = layout.index(c, r);
+      if (layout.cells()[i] != CellState::occupied || std::min(to_free[i], to_unknown[i]) >= keep) continue;
+      out.set(c, r, to_free[i] <= to_unknown[i] ? CellState::free : CellState::unknown);
+    }
+  }
+  return out;
 }
 
 }  // namespace areamatch

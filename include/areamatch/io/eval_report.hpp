@@ -127,15 +127,16 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
   using detail::csv_field;
   using detail::format_double;
   std::string out =
-      "name,kind,ambiguous,different_buildings,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
-      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,confidence,agreement,wall_agreement,reverse_wall_agreement,forward_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,rotation_error_deg,displacement_m,scale_error,correct,"
+      "name,kind,source,destination,ambiguous,different_buildings,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
+      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,confidence,p_correct,agreement,wall_agreement,reverse_wall_agreement,forward_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,overlap_m2,rotation_error_deg,displacement_m,scale_error,correct,transform_correct,"
       "repeatable,runs,failure\n";
   for (const auto& r : rows) {
     const bool ran = r.failure.empty();
     const MatchTimings& t = r.timings;
     const Similarity2& T = r.result.T_dest_source;
     auto number = [&](double v) { return ran ? format_double(v) : std::string(); };
-    out += csv_field(r.pair.name) + "," + csv_field(r.pair.kind) + "," + (r.pair.ambiguous ? "true" : "false") + "," +
+    out += csv_field(r.pair.name) + "," + csv_field(r.pair.kind) + "," + csv_field(r.pair.source) + "," +
+           csv_field(r.pair.destination) + "," + (r.pair.ambiguous ? "true" : "false") + "," +
            (r.pair.different_buildings ? "true" : "false") + ",";
     out += ran ? std::to_string(r.source_areas) + "," + std::to_string(r.dest_areas) + "," : std::string(",,");
     out += number(1000.0 * t.segment_source_s) + "," + number(1000.0 * t.segment_dest_s) + "," +
@@ -144,15 +145,16 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
     out += number(T.rotation * 180.0 / pi) + "," + number(T.translation.x()) + "," + number(T.translation.y()) + "," +
            number(T.scale) + "," + (ran ? std::string(r.result.scale_estimated ? "true" : "false") : std::string()) + "," +
            (ran ? std::string(T.reflected ? "true" : "false") : std::string()) + ",";
-    out += number(r.result.score) + "," + number(r.result.confidence) + ",";
+    out += number(r.result.score) + "," + number(r.result.confidence) + "," + number(r.result.p_correct) + ",";
     const MatchEvidence& e = r.result.evidence;
     for (double v : {e.agreement, e.wall_agreement, e.reverse_wall_agreement, e.forward_wall_agreement, e.free_iou, e.source_on_dest,
-                     e.dest_on_source, e.passage_agreement, e.room_agreement}) {
+                     e.dest_on_source, e.passage_agreement, e.room_agreement, e.overlap_m2}) {
       out += (std::isfinite(v) ? number(v) : std::string()) + ",";
     }
     out += r.error ? format_double(r.error->rotation_error_deg) + "," + format_double(r.error->mean_displacement_m) + "," +
-                         format_double(r.error->scale_error) + "," + (r.correct ? "true" : "false") + ","
-                   : std::string(",,,") + (r.pair.different_buildings && ran ? (r.correct ? "true" : "false") : "") + ",";
+                         format_double(r.error->scale_error) + "," + (r.correct ? "true" : "false") + "," +
+                         (r.transform_correct ? "true" : "false") + ","
+                   : std::string(",,,") + (r.pair.different_buildings && ran ? (r.correct ? "true" : "false") : "") + ",,";
     out += std::string(r.repeatable ? "true" : "false") + "," + std::to_string(r.runs) + "," + csv_field(r.failure) + "\n";
   }
   return out;

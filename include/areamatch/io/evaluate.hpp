@@ -47,6 +47,9 @@ struct PairEvaluation {
   std::optional<MatchError> error; ///< with ground truth only
   /// ok and within the manifest's `correct_if`; for a pair of different buildings: rejected
   bool correct = false;
+  /// The transform is within `correct_if`, whether or not the matcher accepted it (with ground
+  /// truth only): what a decision rule is calibrated against.
+  bool transform_correct = false;
   bool repeatable = true;          ///< every repeat gave a bit-identical transform and score
   int runs = 0;
 };
@@ -152,7 +155,8 @@ inline PairEvaluation evaluate_pair(const ManifestPair& pair, const CorrectnessT
   if (pair.ground_truth) {
     row.error = match_error(row.result.pixel_transform, *pair.ground_truth, free_edge_pixels(run->source),
                             run->dest.resolution());
-    row.correct = row.result.ok && row.error->correct(correct_if);
+    row.transform_correct = row.error->correct(correct_if);
+    row.correct = row.result.ok && row.transform_correct;
   }
   if (last_run) *last_run = std::move(*run);
   return row;

@@ -82,7 +82,7 @@ inline std::string json_number(double value) { return std::isfinite(value) ? for
 
 /// A match result as one JSON object on one line: ok, reason (when not ok), the transform in
 /// world terms (rotation_deg, translation_m, scale, reflected) and as pixel_transform, score,
-/// confidence and its two margins, matched_areas, statistics and timings (seconds).
+/// confidence and its two margins, p_correct, matched_areas, statistics and timings (seconds).
 inline std::string match_result_json(const MatchResult& r) {
   using detail::json_number;
   const Similarity2& T = r.T_dest_source;
@@ -96,7 +96,7 @@ inline std::string match_result_json(const MatchResult& r) {
   out += ", \"pixel_transform\": [[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) +
          "], [" + json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
   out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence) +
-         ", \"ambiguous\": " + (r.ambiguous ? "true" : "false");
+         ", \"ambiguous\": " + (r.ambiguous ? "true" : "false") + ", \"p_correct\": " + json_number(r.p_correct);
   out += ", \"margin_different\": " + json_number(r.margin_different) +
          ", \"margin_mirrored\": " + json_number(r.margin_mirrored);
   const MatchEvidence& e = r.evidence;
@@ -107,7 +107,8 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"free_iou\": " + json_number(e.free_iou) + ", \"source_on_dest\": " + json_number(e.source_on_dest) +
          ", \"dest_on_source\": " + json_number(e.dest_on_source) +
          ", \"passage_agreement\": " + json_number(e.passage_agreement) +
-         ", \"room_agreement\": " + json_number(e.room_agreement) + "}";
+         ", \"room_agreement\": " + json_number(e.room_agreement) +
+         ", \"overlap_m2\": " + json_number(e.overlap_m2) + "}";
   out += ", \"matched_areas\": [";
   for (std::size_t i = 0; i < r.matched_areas.size(); ++i) {
     const auto& a = r.matched_areas[i];

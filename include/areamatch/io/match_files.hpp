@@ -32,6 +32,7 @@ struct MapPairOptions {
   std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
   std::optional<double> min_score;            ///< reject below this whole-map score
   std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
+  std::optional<double> min_p_correct;        ///< reject below this p_correct (match/decision.hpp)
   bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
 };
 
@@ -60,6 +61,7 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRu
   if (options.k) matcher.params.k = *options.k;
   if (options.min_score) matcher.params.min_score = *options.min_score;
   if (options.min_agreement) matcher.params.min_agreement = *options.min_agreement;
+  if (options.min_p_correct) matcher.params.decision.min_p_correct = *options.min_p_correct;
   if (options.estimate_scale) {
     matcher.params.estimate_scale = true;
     matcher.segmenter = segmenter_with_door(options.source_door_width_m);

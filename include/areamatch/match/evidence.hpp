@@ -38,6 +38,8 @@ struct MatchEvidence {
   double forward_wall_agreement = 0.0;
   /// IoU of the two maps' area-covered free space.
   double free_iou = 0.0;
+  /// The area-covered free space the two maps share under the result, destination m².
+  double overlap_m2 = 0.0;
   /// Share of the source's area-covered free space landing on the destination's, and back.
   double source_on_dest = 0.0;
   double dest_on_source = 0.0;
@@ -135,6 +137,7 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   const double source_cells = static_cast<double>(source_raster.centres.size()) * scale2;
   const double dest_cells = static_cast<double>(dest_raster.centres.size());
   const double common = static_cast<double>(hits) * scale2;
+  e.overlap_m2 = common * dest_raster.cell_area();
   e.free_iou = source_cells + dest_cells - common > 0.0 ? common / (source_cells + dest_cells - common) : 0.0;
   e.source_on_dest = source_cells > 0.0 ? common / source_cells : 0.0;
   e.dest_on_source = dest_cells > 0.0 ? std::min(1.0, common / dest_cells) : 0.0;

@@ -73,6 +73,9 @@ struct MatchResult {
   double margin_different = std::numeric_limits<double>::quiet_NaN();  ///< NaN when there is no rival
   double margin_mirrored = std::numeric_limits<double>::quiet_NaN();   ///< NaN without allow_reflection
   bool ambiguous = false;          ///< confidence below `MatcherParams::ambiguity_margin`
+  /// The calibrated probability that the transform is right (match/decision.hpp); `ok` needs at
+  /// least `DecisionParams::min_p_correct`.
+  double p_correct = 0.0;
   /// How much the maps agree under the result, measured several ways (see match/evidence.hpp).
   MatchEvidence evidence;
   std::vector<MatchedAreaPair> matched_areas;

@@ -1,0 +1,149 @@
+#pragma once
+/// \file match/decision.hpp
+/// Whether a match is right: a calibrated probability from several signals of the result, and
+/// the rule that turns it into `MatchResult::ok`.
+///
+/// No single measure separates right from wrong answers across buildings and sensors (the wall
+/// agreement of true pairs of unseen buildings overlaps that of pairs of different buildings),
+/// so the decision is a logistic model over signals that fail in different ways:
+///
+///   walls_best, walls_worst  the better and the worse of the two overlap-restricted wall
+///                            agreements (`MatchEvidence::forward/reverse_wall_agreement`)
+///   rooms                    `MatchEvidence::room_agreement`: the common part cut into the same rooms
+///   margin, log_margin       `MatchResult::confidence` and log10(confidence + 0.01): how far the
+///                            answer stands out from the pair's own alternatives (other clusters'
+///                            refined answers, the mirror); the log spreads the small margins
+///                            where right and wrong answers part (0.003 against 0.1)
+///   log_overlap              log10 of the common free space in m² (a small overlap proves little)
+///
+/// The coefficients are fitted by `fit_decision` (L2-regularised logistic regression, both classes
+/// weighted equally) and chosen by leave-one-building-out cross-validation over every real
+/// building we have plus synthetic ones (`areamatch calibrate`, docs/evaluation.md). Fitting your
+/// own on your buildings and sensors works the same way.
+
+#include "../error.hpp"
+#include "result.hpp"
+
+#include <Eigen/Cholesky>
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <vector>
+
+namespace areamatch {
+
+/// The signals of one result that the decision reads (see the file comment).
+struct DecisionFeatures {
+  static constexpr std::size_t size = 6;
+  std::array<double, size> values{};  ///< in the order of `names`
+  static constexpr std::array<const char*, size> names = {"walls_best", "walls_worst", "rooms",
+                                                          "margin",     "log_margin",  "log_overlap"};
+};
+
+/// A logistic model p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) and the acceptance rule:
+/// ok when agreement ≥ `MatcherParams::min_agreement` or p ≥ `accept_p_correct`, and p ≥
+/// `min_p_correct`.
+struct DecisionParams {
+  /// Fitted by `areamatch calibrate` (l2 = 1) on 1687 rows: shared/pairs.json with its 596 pairs
+  /// of different buildings, shared/handheld/pairs.json with and without reflection and its 175
+  /// pairs of different buildings, and 20 generated buildings with their 760 cross pairs
+  /// (2026-12-01; the leave-one-building-out rates are in docs/evaluation.md).
+  double bias = -6.235;
+  std::array<double, DecisionFeatures::size> weights = {8.409, 0.315, 4.057, 1.640, 2.526, -0.356};  ///< `names` order
+  /// An answer is accepted on the model alone at or above this, even when the maps' agreement is
+  /// below `MatcherParams::min_agreement`: the rule is "agreement ≥ min_agreement, or p_correct ≥
+  /// accept_p_correct". 0.9: accept what the agreement gate refuses only when the model is very
+  /// sure. Cross-validated by building this rule rejects 3 of 154 right answers and accepts 2 of
+  /// 1531 wrong ones; p_correct alone at 0.5 would accept 2 % (docs/evaluation.md).
+  double accept_p_correct = 0.9;
+  /// Below this the answer is rejected whatever the agreement (0: off).
+  double min_p_correct = 0.0;
+
+  void validate() const {
+    if (!std::isfinite(bias)) throw parameter_error("DecisionParams::bias must be finite");
+    for (double w : weights) {
+      if (!std::isfinite(w)) throw parameter_error("DecisionParams::weights must be finite");
+    }
+    if (!(min_p_correct >= 0.0 && min_p_correct <= 1.0)) {
+      throw parameter_error("DecisionParams::min_p_correct must be in [0, 1]");
+    }
+    if (!(accept_p_correct >= 0.0 && accept_p_correct <= 1.0)) {
+      throw parameter_error("DecisionParams::accept_p_correct must be in [0, 1]");
+    }
+  }
+};
+
+/// The decision's signals of a result (NaN-free: missing margins count as none).
+inline DecisionFeatures decision_features(const MatchResult& r) {
+  const MatchEvidence& e = r.evidence;
+  auto unit = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; };
+  DecisionFeatures f;
+  const double margin = unit(r.confidence);
+  f.values = {unit(std::max(e.forward_wall_agreement, e.reverse_wall_agreement)),
+              unit(std::min(e.forward_wall_agreement, e.reverse_wall_agreement)), unit(e.room_agreement),
+              margin, std::log10(margin + 0.01), std::log10(std::max(1.0, std::isfinite(e.overlap_m2) ? e.overlap_m2 : 1.0))};
+  return f;
+}
+
+/// The model's probability that the answer with these signals is right.
+inline double p_correct(const DecisionFeatures& f, const DecisionParams& p) {
+  double z = p.bias;
+  for (std::size_t i = 0; i < DecisionFeatures::size; ++i) z += p.weights[i] * f.values[i];
+  return 1.0 / (1.0 + std::exp(-z));
+}
+
+/// One labelled example for `fit_decision`.
+struct DecisionSample {
+  DecisionFeatures features;
+  bool correct = false;
+};
+
+/// L2-regularised logistic regression (Newton's method), the right and the wrong examples
+/// weighted equally in total, so that the fit does not lean on how many pairs of different
+/// buildings were run. `l2` penalises the weights (not the bias). Keeps `min_p_correct` of `base`.
+/// Throws `parameter_error` without examples of both kinds.
+inline DecisionParams fit_decision(const std::vector<DecisionSample>& samples, double l2 = 1.0,
+                                   const DecisionParams& base = {}) {
+  constexpr int d = static_cast<int>(DecisionFeatures::size) + 1;
+  std::size_t positives = 0;
+  for (const auto& s : samples) positives += s.correct;
+  const std::size_t negatives = samples.size() - positives;
+  if (positives == 0 || negatives == 0) {
+    throw parameter_error("fit_decision needs right and wrong examples (got " + std::to_string(positives) + " and " +
+                          std::to_string(negatives) + ")");
+  }
+  if (!(l2 > 0.0) || !std::isfinite(l2)) throw parameter_error("fit_decision: l2 must be positive");
+  const double n = static_cast<double>(samples.size());
+  const double w_pos = 0.5 * n / static_cast<double>(positives), w_neg = 0.5 * n / static_cast<double>(negatives);
+  Eigen::Matrix<double, d, 1> beta = Eigen::Matrix<double, d, 1>::Zero();
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    Eigen::Matrix<double, d, 1> gradient = Eigen::Matrix<double, d, 1>::Zero();
+    Eigen::Matrix<double, d, d> hessian = Eigen::Matrix<double, d, d>::Zero();
+    for (const auto& s : samples) {
+      Eigen::Matrix<double, d, 1> x;
+      x(0) = 1.0;
+      for (int i = 1; i < d; ++i) x(i) = s.features.values[static_cast<std::size_t>(i - 1)];
+      const double p = 1.0 / (1.0 + std::exp(-beta.dot(x)));
+      const double w = s.correct ? w_pos : w_neg;
+      gradient += w * (p - (s.correct ? 1.0 : 0.0)) * x;
+      hessian += w * std::max(p * (1.0 - p), 1e-12) * x * x.transpose();
+    }
+    for (int i = 1; i < d; ++i) {
+      gradient(i) += l2 * beta(i);
+      hessian(i, i) += l2;
+    }
+    hessian(0, 0) += 1e-9;
+    const Eigen::Matrix<double, d, 1> step = hessian.ldlt().solve(gradient);
+    beta -= step;
+    if (step.cwiseAbs().maxCoeff() < 1e-10) break;
+  }
+  DecisionParams out = base;
+  out.bias = beta(0);
+  for (int i = 1; i < d; ++i) out.weights[static_cast<std::size_t>(i - 1)] = beta(i);
+  return out;
+}
+
+}  // namespace areamatch

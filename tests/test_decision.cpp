@@ -1,0 +1,119 @@
+// The accept/reject decision (match/decision.hpp): the logistic fit itself, and a rule fitted
+// without one generated building judging that building — the way its coefficients are chosen
+// (leave-one-building-out, docs/evaluation.md), so a rule that only works on the buildings it
+// was fitted on fails here.
+#include <areamatch/areamatch.hpp>
+#include <areamatch/evaluation.hpp>
+
+#include <doctest/doctest.h>
+
+#include "test_support.hpp"
+
+#include <cstdint>
+#include <vector>
+
+using namespace areamatch;
+
+namespace {
+
+DecisionSample sample(double walls, double rooms, double margin, double overlap_m2, bool correct) {
+  DecisionSample s;
+  s.features.values = {walls, walls - 0.05, rooms, margin, std::log10(margin + 0.01), std::log10(overlap_m2)};
+  s.correct = correct;
+  return s;
+}
+
+struct Row {
+  int source_building, dest_building;
+  DecisionSample sample;
+};
+
+}  // namespace
+
+TEST_CASE("fit_decision: separates right from wrong, deterministic, refuses one-sided data") {
+  std::vector<DecisionSample> samples;
+  for (int i = 0; i < 20; ++i) {
+    samples.push_back(sample(0.85 + 0.005 * i, 0.8, 0.3, 200.0, true));
+    samples.push_back(sample(0.45 + 0.01 * i, 0.2, 0.02, 80.0, false));
+  }
+  const DecisionParams a = fit_decision(samples);
+  const DecisionParams b = fit_decision(samples);
+  CHECK(a.bias == b.bias);
+  CHECK(a.weights == b.weights);
+  for (const auto& s : samples) CHECK((p_correct(s.features, a) >= 0.5) == s.correct);
+  CHECK(a.min_p_correct == DecisionParams{}.min_p_correct);
+  std::vector<DecisionSample> only_right(samples.begin(), samples.begin() + 1);
+  CHECK_THROWS_AS(fit_decision(only_right), parameter_error);
+  CHECK_THROWS_AS(fit_decision(samples, 0.0), parameter_error);
+  DecisionParams bad;
+  bad.min_p_correct = 1.5;
+  CHECK_THROWS_AS(bad.validate(), parameter_error);
+}
+
+TEST_CASE("the decision fitted without a generated building judges that building") {
+  // Robot maps of several generated buildings (partly explored, turned, some mirrored), each
+  // matched onto its own layout and onto every other building's layout.
+  const int buildings = areamatch_test::quick_tests() ? 3 : 6;
+  const CorrectnessThresholds thresholds{3.0, 0.5};
+  std::vector<SyntheticBuilding> layouts;
+  std::vector<RobotMap> robots;
+  for (int i = 0; i < buildings; ++i) {
+    BuildingParams bp;
+    bp.width_m = 20.0 + 3.0 * i;
+    bp.height_m = 15.0 + 2.0 * (i % 3);
+    layouts.push_back(generate_building(bp, 700 + static_cast<std::uint64_t>(i)));
+    RobotMapParams rp;
+    rp.rotation_rad = 1.1 * i - 2.0;
+    rp.mirror = i % 3 == 2;
+    rp.explored_fraction = i % 2 ? 0.5 : 0.9;
+    rp.wall_noise_m = 0.02;
+    rp.max_clutter_per_room = 2;
+    robots.push_back(make_robot_map(layouts.back(), rp, 800 + static_cast<std::uint64_t>(i)));
+  }
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  std::vector<Row> rows;
+  int right_answers = 0;
+  for (int i = 0; i < buildings; ++i) {
+    for (int j = 0; j < buildings; ++j) {
+      const MatchResult r = matcher.match(robots[i].grid, layouts[j].layout);
+      bool right = false;
+      if (i == j) {
+        const MatchError e = match_error(r.pixel_transform, robots[i].pixel_transform, free_edge_pixels(robots[i].grid),
+                                         layouts[i].layout.resolution());
+        right = e.correct(thresholds);
+        right_answers += right;
+      }
+      rows.push_back({i, j, {decision_features(r), right}});
+    }
+  }
+  REQUIRE(right_answers >= buildings - 1);
+  constexpr double threshold = 0.5;  // the rule calibrate judges (DecisionParams keeps it off by default)
+  int false_rejects = 0, false_accepts = 0, shipped_false_rejects = 0, shipped_false_accepts = 0;
+  for (int held = 0; held < buildings; ++held) {
+    std::vector<DecisionSample> train;
+    for (const Row& r : rows) {
+      if (r.source_building != held && r.dest_building != held) train.push_back(r.sample);
+    }
+    const DecisionParams model = fit_decision(train);
+    for (const Row& r : rows) {
+      if (r.source_building != held && r.dest_building != held) continue;
+      const bool accepted = p_correct(r.sample.features, model) >= threshold;
+      const bool shipped = p_correct(r.sample.features, DecisionParams{}) >= threshold;
+      if (r.source_building != held) continue;  // each row once: under its source's building
+      false_rejects += r.sample.correct && !accepted;
+      false_accepts += !r.sample.correct && accepted;
+      shipped_false_rejects += r.sample.correct && !shipped;
+      shipped_false_accepts += !r.sample.correct && shipped;
+    }
+  }
+  MESSAGE("held-out buildings: " << false_rejects << " false rejects of " << right_answers << ", " << false_accepts
+                                 << " false accepts of " << rows.size() - static_cast<std::size_t>(right_answers)
+                                 << "; shipped coefficients: " << shipped_false_rejects << " and " << shipped_false_accepts);
+  CHECK(false_rejects == 0);
+  CHECK(false_accepts == 0);
+  // The shipped coefficients were fitted on other buildings (real and generated): they must judge
+  // these unseen ones as well.
+  CHECK(shipped_false_rejects == 0);
+  CHECK(shipped_false_accepts == 0);
+}

@@ -1,0 +1,250 @@
+#pragma once
+// `areamatch calibrate`: fits the accept/reject decision (areamatch/match/decision.hpp) on the
+// rows of `areamatch eval --out DIR` runs (DIR/results.csv) and measures it by leave-one-
+// building-out cross-validation: each building's pairs are judged by a model fitted without any
+// pair that touches that building. Program code, not library API.
+
+#include <areamatch/error.hpp>
+#include <areamatch/match/decision.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <numeric>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace areamatch_cli {
+
+/// One labelled row of an eval CSV.
+struct CalibrationRow {
+  std::string name, source, destination;
+  bool different_buildings = false;
+  double agreement = 0.0;  ///< MatchEvidence::agreement, for the rule's agreement gate
+  areamatch::DecisionSample sample;
+  int source_building = -1, dest_building = -1;  ///< filled by `assign_buildings`
+};
+
+/// The fields of one CSV line (RFC 4180 quoting, as `detail::csv_field` writes it).
+inline std::vector<std::string> csv_fields(const std::string& line) {
+  std::vector<std::string> out(1);
+  bool quoted = false;
+  for (std::size_t i = 0; i < line.size(); ++i) {
+    const char c = line[i];
+    if (quoted) {
+      if (c == '"' && i + 1 < line.size() && line[i + 1] == '"') {
+        out.back() += '"';
+        ++i;
+      } else if (c == '"') {
+        quoted = false;
+      } else {
+        out.back() += c;
+      }
+    } else if (c == '"') {
+      quoted = true;
+    } else if (c == ',') {
+      out.emplace_back();
+    } else if (c != '\r') {
+      out.back() += c;
+    }
+  }
+  return out;
+}
+
+/// The labelled rows of an eval CSV: pairs of different buildings (wrong by definition) and pairs
+/// with ground truth (right when the transform is within the manifest's correct_if). Pairs that
+/// could not run, have no ground truth, or are marked ambiguous are left out.
+inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path) {
+  std::ifstream in(path);
+  if (!in) throw areamatch::io_error("cannot read " + path);
+  std::string line;
+  if (!std::getline(in, line)) throw areamatch::format_error(path + ": empty");
+  const std::vector<std::string> header = csv_fields(line);
+  auto column = [&](const std::string& name) {
+    const auto it = std::find(header.begin(), header.end(), name);
+    if (it == header.end()) throw areamatch::format_error(path + ": no column '" + name + "' (not an areamatch eval results.csv of this version)");
+    return static_cast<std::size_t>(it - header.begin());
+  };
+  const std::size_t c_name = column("name"), c_source = column("source"), c_dest = column("destination"),
+                    c_ambiguous = column("ambiguous"), c_different = column("different_buildings"),
+                    c_failure = column("failure"), c_truth = column("transform_correct"),
+                    c_forward = column("forward_wall_agreement"), c_reverse = column("reverse_wall_agreement"),
+                    c_rooms = column("room_agreement"), c_confidence = column("confidence"), c_overlap = column("overlap_m2"),
+                    c_p = column("p_correct"), c_agreement = column("agreement");
+  auto value = [&](const std::vector<std::string>& f, std::size_t c) {
+    return f[c].empty() ? std::nan("") : std::stod(f[c]);
+  };
+  std::vector<CalibrationRow> rows;
+  std::size_t line_number = 1;
+  while (std::getline(in, line)) {
+    ++line_number;
+    if (line.empty()) continue;
+    const std::vector<std::string> f = csv_fields(line);
+    if (f.size() != header.size()) {
+      throw areamatch::format_error(path + ":" + std::to_string(line_number) + ": " + std::to_string(f.size()) +
+                                    " fields, the header has " + std::to_string(header.size()));
+    }
+    if (!f[c_failure].empty() || f[c_ambiguous] == "true" || f[c_p].empty()) continue;
+    CalibrationRow row;
+    row.name = f[c_name];
+    row.different_buildings = f[c_different] == "true";
+    if (!row.different_buildings && f[c_truth].empty()) continue;
+    std::error_code ec;
+    row.source = std::filesystem::weakly_canonical(f[c_source], ec).string();
+    row.destination = std::filesystem::weakly_canonical(f[c_dest], ec).string();
+    areamatch::MatchResult r;  // just the fields decision_features reads
+    r.evidence.forward_wall_agreement = value(f, c_forward);
+    r.evidence.reverse_wall_agreement = value(f, c_reverse);
+    r.evidence.room_agreement = value(f, c_rooms);
+    r.evidence.overlap_m2 = value(f, c_overlap);
+    r.confidence = value(f, c_confidence);
+    row.sample.features = areamatch::decision_features(r);
+    row.agreement = value(f, c_agreement);
+    row.sample.correct = !row.different_buildings && f[c_truth] == "true";
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+/// Buildings: maps joined by a pair of one building are one building. Returns their names (the
+/// first map's file stem of each).
+inline std::vector<std::string> assign_buildings(std::vector<CalibrationRow>& rows) {
+  std::map<std::string, std::size_t> index;
+  std::vector<std::size_t> parent;
+  std::vector<std::string> first_map;
+  auto id = [&](const std::string& path) {
+    const auto [it, added] = index.emplace(path, parent.size());
+    if (added) {
+      parent.push_back(parent.size());
+      first_map.push_back(path);
+    }
+    return it->second;
+  };
+  auto find = [&](std::size_t i) {
+    while (parent[i] != i) i = parent[i] = parent[parent[i]];
+    return i;
+  };
+  for (const auto& r : rows) {
+    const std::size_t a = id(r.source), b = id(r.destination);
+    if (!r.different_buildings) parent[find(a)] = find(b);
+  }
+  std::map<std::size_t, int> building_of_root;
+  std::vector<std::string> names;
+  for (auto& r : rows) {
+    for (auto [path, out] : {std::pair{&r.source, &r.source_building}, std::pair{&r.destination, &r.dest_building}}) {
+      const std::size_t root = find(id(*path));
+      const auto [it, added] = building_of_root.emplace(root, static_cast<int>(names.size()));
+      if (added) {
+        const std::filesystem::path p(first_map[root]);
+        names.push_back(p.parent_path().filename().string() + "/" + p.stem().string());
+      }
+      *out = it->second;
+    }
+  }
+  return names;
+}
+
+/// Outcome counts of a decision on some rows.
+struct DecisionCounts {
+  std::size_t right = 0, right_rejected = 0;  ///< right transforms, and those rejected (false rejects)
+  std::size_t wrong_same = 0, wrong_same_accepted = 0;  ///< wrong transforms of one building, accepted
+  std::size_t different = 0, different_accepted = 0;    ///< pairs of different buildings, accepted
+  void add(bool right_answer, bool different_buildings, bool accepted) {
+    if (right_answer) {
+      ++right;
+      right_rejected += !accepted;
+    } else if (different_buildings) {
+      ++different;
+      different_accepted += accepted;
+    } else {
+      ++wrong_same;
+      wrong_same_accepted += accepted;
+    }
+  }
+  void add(const DecisionCounts& o) {
+    right += o.right, right_rejected += o.right_rejected, wrong_same += o.wrong_same;
+    wrong_same_accepted += o.wrong_same_accepted, different += o.different, different_accepted += o.different_accepted;
+  }
+};
+
+/// Leave-one-building-out predictions: `predicted[i]` is row i's probability from the model
+/// fitted on the rows that touch none of row i's buildings. A row of two buildings is predicted
+/// once per building; the higher probability (the less favourable for a wrong row) is kept.
+inline std::vector<double> leave_one_building_out(const std::vector<CalibrationRow>& rows, std::size_t buildings,
+                                                  double l2, const areamatch::DecisionParams& base) {
+  std::vector<double> predicted(rows.size(), -1.0);
+  for (std::size_t b = 0; b < buildings; ++b) {
+    const int held = static_cast<int>(b);
+    std::vector<areamatch::DecisionSample> train;
+    std::vector<std::size_t> test;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const bool touches = rows[i].source_building == held || rows[i].dest_building == held;
+      if (touches) test.push_back(i);
+      else train.push_back(rows[i].sample);
+    }
+    if (test.empty()) continue;
+    const areamatch::DecisionParams model = areamatch::fit_decision(train, l2, base);
+    for (std::size_t i : test) {
+      const double p = areamatch::p_correct(rows[i].sample.features, model);
+      predicted[i] = rows[i].sample.correct ? (predicted[i] < 0.0 ? p : std::min(predicted[i], p))
+                                            : std::max(predicted[i], p);
+    }
+  }
+  return predicted;
+}
+
+inline std::string percent(std::size_t part, std::size_t whole) {
+  if (whole == 0) return "-";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << 100.0 * static_cast<double>(part) / static_cast<double>(whole) << " %";
+  return s.str();
+}
+
+/// A reliability diagram as SVG: per bin of predicted probability, the observed share of right
+/// answers (dots, sized by the bin's count) against the diagonal.
+inline std::string reliability_svg(const std::vector<double>& predicted, const std::vector<CalibrationRow>& rows, int bins) {
+  std::vector<double> sum_p(static_cast<std::size_t>(bins), 0.0), right(static_cast<std::size_t>(bins), 0.0);
+  std::vector<std::size_t> count(static_cast<std::size_t>(bins), 0);
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const auto b = static_cast<std::size_t>(std::clamp(static_cast<int>(predicted[i] * bins), 0, bins - 1));
+    sum_p[b] += predicted[i];
+    right[b] += rows[i].sample.correct;
+    ++count[b];
+  }
+  const double size = 400.0, margin = 50.0;
+  auto x = [&](double v) { return margin + v * size; };
+  auto y = [&](double v) { return margin + (1.0 - v) * size; };
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"" << size + 2 * margin << "\" height=\"" << size + 2 * margin
+    << "\" font-family=\"sans-serif\" font-size=\"12\">\n<rect width=\"100%\" height=\"100%\" fill=\"white\"/>\n"
+    << "<rect x=\"" << margin << "\" y=\"" << margin << "\" width=\"" << size << "\" height=\"" << size
+    << "\" fill=\"none\" stroke=\"black\"/>\n<line x1=\"" << x(0) << "\" y1=\"" << y(0) << "\" x2=\"" << x(1) << "\" y2=\""
+    << y(1) << "\" stroke=\"grey\" stroke-dasharray=\"4 4\"/>\n";
+  for (int t = 0; t <= 10; t += 2) {
+    const double v = t / 10.0;
+    s << "<text x=\"" << x(v) << "\" y=\"" << y(0) + 16 << "\" text-anchor=\"middle\">" << v << "</text>\n<text x=\""
+      << x(0) - 6 << "\" y=\"" << y(v) + 4 << "\" text-anchor=\"end\">" << v << "</text>\n";
+  }
+  s << "<text x=\"" << x(0.5) << "\" y=\"" << y(0) + 34 << "\" text-anchor=\"middle\">predicted p_correct "
+    << "(leave-one-building-out)</text>\n<text transform=\"translate(14 " << y(0.5) << ") rotate(-90)\" "
+    << "text-anchor=\"middle\">observed share of right answers</text>\n";
+  for (std::size_t b = 0; b < count.size(); ++b) {
+    if (count[b] == 0) continue;
+    const double n = static_cast<double>(count[b]);
+    s << "<circle cx=\"" << x(sum_p[b] / n) << "\" cy=\"" << y(right[b] / n) << "\" r=\"" << 3.0 + 2.0 * std::log10(n) * 2.0
+      << "\" fill=\"steelblue\" fill-opacity=\"0.7\"/>\n<text x=\"" << x(sum_p[b] / n) + 8 << "\" y=\"" << y(right[b] / n) - 8
+      << "\">" << count[b] << "</text>\n";
+  }
+  s << "</svg>\n";
+  return s.str();
+}
+
+}  // namespace areamatch_cli
