@@ -173,6 +173,36 @@ TEST_CASE("different synthetic buildings are rejected, their true pairs accepted
   CHECK(rejected == buildings);
 }
 
+TEST_CASE("generated hand-held scans onto line-drawn layouts: right and accepted; another building's refused") {
+  const int cases = areamatch_test::quick_tests() ? 2 : 6;
+  const CorrectnessThresholds thresholds{3.0, 0.5};
+  Matcher<> matcher;
+  // The drawn doorways are 0.1 m wider than the built ones (the walls thinned from 0.15 to 0.05 m).
+  matcher.segmenter.params.with_door_width(1.0);
+  std::vector<OccupancyGrid> layouts;
+  int right = 0, other_refused = 0;
+  for (int i = 0; i < cases; ++i) {
+    BuildingParams bp;
+    bp.resolution = 0.025;
+    auto building = generate_building(bp, 900 + static_cast<std::uint64_t>(i));
+    RobotMapParams rp = RobotMapParams::handheld();
+    rp.rotation_rad = 2.1 * i - 3.0;
+    const RobotMap scan = make_robot_map(building, rp, 950 + static_cast<std::uint64_t>(i));
+    layouts.push_back(layout_line_drawing(building, 0.05));
+    const MatchResult r = matcher.match(scan.grid, layouts.back());
+    const MatchError e = match_error(r.pixel_transform, scan.pixel_transform, free_edge_pixels(scan.grid), bp.resolution);
+    MESSAGE("scan " << i << ": " << (r.ok ? "ok" : r.reason) << ", rotation error " << e.rotation_error_deg
+                    << " deg, displacement " << e.mean_displacement_m << " m, p_correct " << r.p_correct);
+    right += r.ok && e.correct(thresholds);
+    if (i > 0) {
+      const MatchResult other = matcher.match(scan.grid, layouts[static_cast<std::size_t>(i - 1)]);
+      other_refused += !other.ok;
+    }
+  }
+  CHECK(right == cases);
+  CHECK(other_refused == cases - 1);
+}
+
 TEST_CASE("partial maps both ways: a 40 %-explored robot map onto its layout, and the layout onto it") {
   const int cases = areamatch_test::quick_tests() ? 2 : 8;
   int robot_onto_layout = 0, layout_onto_robot = 0;

@@ -220,6 +220,50 @@ TEST_CASE("robot-map degradations: partial exploration, clutter, noise, outside"
   CHECK(make_robot_map(b, occupied_outside, 1).grid.count().unknown == 0);
 }
 
+TEST_CASE("hand-held scans: thin seen walls on the ground truth, partial coverage, a line-drawn layout") {
+  const auto b = generate_building(params_for(CorridorLayout::straight), 6);
+  RobotMapParams rp = RobotMapParams::handheld();
+  rp.rotation_rad = 0.8;
+  rp.wall_bend_m = 0.0;  // so that the ground truth is exact cell by cell
+  rp.wall_noise_m = 0.0;
+  rp.speckle_per_m2 = 0.0;
+  rp.max_clutter_per_room = 0;
+  const auto scan = make_robot_map(b, rp, 3);
+  CHECK(scan.grid.resolution() == 0.02);
+  // Seen walls lie on the layout's walls, and the scan is partial: 40 % of the rooms.
+  CHECK(agreement(b, scan, CellState::occupied) > 0.97);
+  CHECK(agreement(b, scan, CellState::free) > 0.99);
+  const std::size_t rooms = b.areas.size() - 1;
+  CHECK(scan.explored_areas.size() == 1 + static_cast<std::size_t>(std::lround(0.4 * rooms)));
+  const double free_m2 = scan.grid.count().free * 0.02 * 0.02, layout_free_m2 = b.layout.count().free * 0.05 * 0.05;
+  CHECK(free_m2 < 0.7 * layout_free_m2);
+  CHECK(free_m2 > 0.1 * layout_free_m2);
+  // Walls are seen from the explored side only: far fewer occupied cells than whole walls give.
+  RobotMapParams whole = rp;
+  whole.seen_wall_m = 0.0;
+  whole.wall_gap_fraction = 0.0;
+  whole.closed_door_fraction = 0.0;
+  CHECK(scan.grid.count().occupied < 0.7 * make_robot_map(b, whole, 3).grid.count().occupied);
+  // Deterministic in the seed.
+  CHECK(make_robot_map(b, RobotMapParams::handheld(), 4).grid == make_robot_map(b, RobotMapParams::handheld(), 4).grid);
+
+  // The line drawing: the same free rooms, walls 0.05 m thin, outside unknown.
+  const OccupancyGrid drawn = layout_line_drawing(b, 0.05);
+  CHECK(drawn.width() == b.layout.width());
+  CHECK(drawn.count().occupied < 0.6 * b.layout.count().occupied);
+  CHECK(drawn.count().free > b.layout.count().free);
+  for (int r = 0; r < b.layout.height(); ++r) {
+    for (int c = 0; c < b.layout.width(); ++c) {
+      if (b.layout.at(c, r) == CellState::free) REQUIRE(drawn.at(c, r) == CellState::free);
+      if (b.layout.at(c, r) == CellState::unknown) REQUIRE(drawn.at(c, r) == CellState::unknown);
+    }
+  }
+  CHECK_THROWS_AS(layout_line_drawing(b, 0.0), parameter_error);
+  RobotMapParams bad = RobotMapParams::handheld();
+  bad.wall_gap_fraction = 1.5;
+  CHECK_THROWS_WITH_AS(make_robot_map(b, bad, 1), doctest::Contains("wall_gap_fraction"), parameter_error);
+}
+
 TEST_CASE("invalid generator parameters are rejected with the parameter's name") {
   BuildingParams p;
   p.width_m = -1;

@@ -39,7 +39,9 @@ using areamatch_cli::DecisionCounts;
 using areamatch_cli::leave_one_building_out;
 using areamatch_cli::percent;
 using areamatch_cli::read_calibration_rows;
+using areamatch_cli::reliability;
 using areamatch_cli::reliability_svg;
+using areamatch_cli::ReliabilityBin;
 using areamatch_cli::UsageError;
 
 const std::set<std::string> kMapFlags = {"negate", "help"};
@@ -649,21 +651,18 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   for (std::size_t i = 0; i < areamatch::DecisionFeatures::size; ++i) {
     std::cout << (i ? ", " : "") << areamatch::DecisionFeatures::names[i];
   }
-  std::cout << ")\n\nreliability (cross-validated): bin | rows | mean predicted | observed right\n";
+  std::cout << ")\n\nreliability (cross-validated): bin | rows | mean predicted | observed right | observed right, "
+               "classes weighted equally (the fit's prior)\n";
   constexpr int bins = 10;
+  const std::vector<ReliabilityBin> table = reliability(predicted, rows, bins);
   for (int b = 0; b < bins; ++b) {
-    double sum = 0.0, right = 0.0;
-    std::size_t n = 0;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (std::clamp(static_cast<int>(predicted[i] * bins), 0, bins - 1) != b) continue;
-      sum += predicted[i];
-      right += rows[i].sample.correct;
-      ++n;
-    }
-    std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << n << " | "
-              << (n ? format_fixed(sum / n, 3) : "-") << " | " << (n ? format_fixed(right / n, 3) : "-") << "\n";
+    const ReliabilityBin& r = table[static_cast<std::size_t>(b)];
+    std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << r.rows
+              << " | " << (r.rows ? format_fixed(r.mean_predicted, 3) : "-") << " | "
+              << (r.rows ? format_fixed(r.observed, 3) : "-") << " | " << (r.rows ? format_fixed(r.observed_balanced, 3) : "-")
+              << "\n";
   }
-  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(predicted, rows, bins));
+  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(table));
   return 0;
 }
 

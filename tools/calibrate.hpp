@@ -206,17 +206,41 @@ inline std::string percent(std::size_t part, std::size_t whole) {
   return s.str();
 }
 
-/// A reliability diagram as SVG: per bin of predicted probability, the observed share of right
-/// answers (dots, sized by the bin's count) against the diagonal.
-inline std::string reliability_svg(const std::vector<double>& predicted, const std::vector<CalibrationRow>& rows, int bins) {
-  std::vector<double> sum_p(static_cast<std::size_t>(bins), 0.0), right(static_cast<std::size_t>(bins), 0.0);
-  std::vector<std::size_t> count(static_cast<std::size_t>(bins), 0);
+/// One bin of a reliability table: its rows, their mean prediction, the share of right answers
+/// among them, and that share with both classes weighted equally in total (the prior the model is
+/// fitted under, `fit_decision`).
+struct ReliabilityBin {
+  std::size_t rows = 0;
+  double mean_predicted = 0.0, observed = 0.0, observed_balanced = 0.0;
+};
+
+inline std::vector<ReliabilityBin> reliability(const std::vector<double>& predicted, const std::vector<CalibrationRow>& rows,
+                                               int bins) {
+  std::size_t positives = 0;
+  for (const auto& r : rows) positives += r.sample.correct;
+  const double n = static_cast<double>(rows.size());
+  const double w_right = positives ? 0.5 * n / static_cast<double>(positives) : 0.0;
+  const double w_wrong = positives < rows.size() ? 0.5 * n / static_cast<double>(rows.size() - positives) : 0.0;
+  std::vector<ReliabilityBin> out(static_cast<std::size_t>(bins));
+  std::vector<double> right(out.size(), 0.0), wrong(out.size(), 0.0);
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const auto b = static_cast<std::size_t>(std::clamp(static_cast<int>(predicted[i] * bins), 0, bins - 1));
-    sum_p[b] += predicted[i];
-    right[b] += rows[i].sample.correct;
-    ++count[b];
+    ++out[b].rows;
+    out[b].mean_predicted += predicted[i];
+    (rows[i].sample.correct ? right[b] : wrong[b]) += 1.0;
   }
+  for (std::size_t b = 0; b < out.size(); ++b) {
+    if (out[b].rows == 0) continue;
+    out[b].mean_predicted /= static_cast<double>(out[b].rows);
+    out[b].observed = right[b] / static_cast<double>(out[b].rows);
+    out[b].observed_balanced = w_right * right[b] / (w_right * right[b] + w_wrong * wrong[b]);
+  }
+  return out;
+}
+
+/// A reliability diagram as SVG: per bin of predicted probability, the share of right answers
+/// with both classes weighted equally (dots, sized by the bin's rows) against the diagonal.
+inline std::string reliability_svg(const std::vector<ReliabilityBin>& table) {
   const double size = 400.0, margin = 50.0;
   auto x = [&](double v) { return margin + v * size; };
   auto y = [&](double v) { return margin + (1.0 - v) * size; };
@@ -235,13 +259,12 @@ inline std::string reliability_svg(const std::vector<double>& predicted, const s
   }
   s << "<text x=\"" << x(0.5) << "\" y=\"" << y(0) + 34 << "\" text-anchor=\"middle\">predicted p_correct "
     << "(leave-one-building-out)</text>\n<text transform=\"translate(14 " << y(0.5) << ") rotate(-90)\" "
-    << "text-anchor=\"middle\">observed share of right answers</text>\n";
-  for (std::size_t b = 0; b < count.size(); ++b) {
-    if (count[b] == 0) continue;
-    const double n = static_cast<double>(count[b]);
-    s << "<circle cx=\"" << x(sum_p[b] / n) << "\" cy=\"" << y(right[b] / n) << "\" r=\"" << 3.0 + 2.0 * std::log10(n) * 2.0
-      << "\" fill=\"steelblue\" fill-opacity=\"0.7\"/>\n<text x=\"" << x(sum_p[b] / n) + 8 << "\" y=\"" << y(right[b] / n) - 8
-      << "\">" << count[b] << "</text>\n";
+    << "text-anchor=\"middle\">observed share of right answers (classes weighted equally)</text>\n";
+  for (const ReliabilityBin& b : table) {
+    if (b.rows == 0) continue;
+    s << "<circle cx=\"" << x(b.mean_predicted) << "\" cy=\"" << y(b.observed_balanced) << "\" r=\""
+      << 3.0 + 4.0 * std::log10(static_cast<double>(b.rows)) << "\" fill=\"steelblue\" fill-opacity=\"0.7\"/>\n<text x=\""
+      << x(b.mean_predicted) + 8 << "\" y=\"" << y(b.observed_balanced) - 8 << "\">" << b.rows << "</text>\n";
   }
   s << "</svg>\n";
   return s.str();

@@ -696,12 +696,14 @@ inline OccupancyGrid layout_line_drawing(const SyntheticBuilding& building, doub
   }
   const std::vector<double> to_free = detail::chamfer_distance(layout, free_seed);
   const std::vector<double> to_unknown = detail::chamfer_distance(layout, unknown_seed);
-  const double keep = 0.5 * (building.params.wall_thickness_m - line_width_m);
+  // A wall cell's centre lies half a cell further from the nearest other cell's centre than from
+  // the wall's surface.
+  const double keep = 0.5 * (building.params.wall_thickness_m - line_width_m) + 0.5 * layout.resolution();
   OccupancyGrid out = layout;
   for (int r = 0; r < layout.height(); ++r) {
     for (int c = 0; c < layout.width(); ++c) {
       const std::size_t i = layout.index(c, r);
-      if (layout.cells()[i] != CellState::occupied || std::min(to_free[i], to_unknown[i]) >= keep) continue;
+      if (layout.cells()[i] != CellState::occupied || std::min(to_free[i], to_unknown[i]) >= keep - 1e-9) continue;
       out.set(c, r, to_free[i] <= to_unknown[i] ? CellState::free : CellState::unknown);
     }
   }

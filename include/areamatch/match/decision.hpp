@@ -47,17 +47,19 @@ struct DecisionFeatures {
 /// ok when agreement ≥ `MatcherParams::min_agreement` or p ≥ `accept_p_correct`, and p ≥
 /// `min_p_correct`.
 struct DecisionParams {
-  /// Fitted by `areamatch calibrate` (l2 = 1) on 1687 rows: shared/pairs.json with its 596 pairs
-  /// of different buildings, shared/handheld/pairs.json with and without reflection and its 175
-  /// pairs of different buildings, and 20 generated buildings with their 760 cross pairs
-  /// (2026-12-01; the leave-one-building-out rates are in docs/evaluation.md).
-  double bias = -6.235;
-  std::array<double, DecisionFeatures::size> weights = {8.409, 0.315, 4.057, 1.640, 2.526, -0.356};  ///< `names` order
+  /// Fitted by `areamatch calibrate` (l2 = 1) on 3825 rows of 141 buildings: shared/pairs.json and
+  /// its 596 pairs of different buildings, shared/handheld/pairs.json (with and without reflection)
+  /// and its 175, 252 pairs of a shared map and a hand-held one, three generated sets of 20
+  /// buildings with 760 cross pairs each, 50 generated hand-held pairs and 12 more with their 264
+  /// cross pairs (2026-12-01; the leave-one-building-out rates are in docs/evaluation.md).
+  double bias = -9.325;
+  std::array<double, DecisionFeatures::size> weights = {12.124, -0.205, 3.287, 3.224, 3.264, 0.020};  ///< `names` order
   /// An answer is accepted on the model alone at or above this, even when the maps' agreement is
   /// below `MatcherParams::min_agreement`: the rule is "agreement ≥ min_agreement, or p_correct ≥
   /// accept_p_correct". 0.9: accept what the agreement gate refuses only when the model is very
-  /// sure. Cross-validated by building this rule rejects 3 of 154 right answers and accepts 2 of
-  /// 1531 wrong ones; p_correct alone at 0.5 would accept 2 % (docs/evaluation.md).
+  /// sure. Cross-validated by building this rule rejects 5 of 256 right answers and accepts 5 of
+  /// 3567 wrong ones; p_correct alone at 0.5 would accept 1.6 %, the agreement gate alone reject
+  /// 13 % of the right ones (docs/evaluation.md).
   double accept_p_correct = 0.9;
   /// Below this the answer is rejected whatever the agreement (0: off).
   double min_p_correct = 0.0;
