@@ -276,6 +276,42 @@ TEST_CASE("eval --cross-buildings: the maps of different generated buildings are
   CHECK(read_text(out + "/results.json").find("\"different_rejected\": 4") != std::string::npos);
 }
 
+TEST_CASE("calibrate: fits the decision on eval results, cross-validated by building; bad input exits 2") {
+  const std::string dir = areamatch_test::temp_dir() + "/calibrate";
+  REQUIRE(run("generate " + dir + " --count 3 --seed 70 --width 15 --height 11").status == 0);
+  const std::string out = areamatch_test::temp_dir() + "/calibrate_out";
+  REQUIRE(run("eval " + dir + "/pairs.json --cross-buildings --out " + out, false).status == 0);
+  const Run fit = run("calibrate " + out + "/results.csv --svg " + out + "/reliability.svg", false);
+  INFO(fit.out);
+  CHECK(fit.status == 0);
+  CHECK(fit.out.find("3 buildings") != std::string::npos);
+  CHECK(fit.out.find("total (cross-validated)") != std::string::npos);
+  CHECK(fit.out.find("fitted on all rows: bias = ") != std::string::npos);
+  CHECK(read_text(out + "/reliability.svg").find("<svg") != std::string::npos);
+  CHECK(run("calibrate " + out + "/missing.csv").status == 2);
+  CHECK(run("calibrate").status == 2);
+  areamatch_test::write_bytes(out + "/bad.csv", "name,kind\na,b\n");
+  const Run bad = run("calibrate " + out + "/bad.csv");
+  CHECK(bad.status == 2);
+  CHECK(bad.out.find("no column") != std::string::npos);
+  // Only pairs of one building: nothing to tell right from wrong by.
+  REQUIRE(run("eval " + dir + "/pairs.json --out " + out + "/same", false).status == 0);
+  const Run one_sided = run("calibrate " + out + "/same/results.csv");
+  CHECK(one_sided.status == 2);
+  CHECK(one_sided.out.find("right and wrong examples") != std::string::npos);
+}
+
+TEST_CASE("generate --style handheld: a partial scan onto a line-drawn layout, matched") {
+  const std::string dir = areamatch_test::temp_dir() + "/handheld";
+  REQUIRE(run("generate " + dir + " --style handheld --seed 3 --width 20 --height 14").status == 0);
+  CHECK(read_text(dir + "/pairs.json").find("\"door_width_m\": 1,") != std::string::npos);
+  CHECK(read_text(dir + "/robot.yaml").find("resolution: 0.02") != std::string::npos);
+  const Run eval = run("eval " + dir + "/pairs.json --no-reflection", false);
+  INFO(eval.out);
+  CHECK(eval.out.find("correct: 1 / 1") != std::string::npos);
+  CHECK(run("generate " + dir + " --style lidar").status == 2);
+}
+
 TEST_CASE("eval: bad manifests exit 2 naming the pair and field") {
   const std::string dir = areamatch_test::temp_dir() + "/eval_bad";
   REQUIRE(run("generate " + dir + " --seed 2 --width 12 --height 10").status == 0);
