@@ -10,6 +10,7 @@
 #include "test_support.hpp"
 
 #include <cstdint>
+#include <string>
 #include <vector>
 
 using namespace areamatch;
@@ -116,4 +117,36 @@ TEST_CASE("the decision fitted without a generated building judges that building
   // these unseen ones as well.
   CHECK(shipped_false_rejects == 0);
   CHECK(shipped_false_accepts == 0);
+}
+
+TEST_CASE("the rule: agreement gate or a sure model; min_p_correct rejects whatever the agreement") {
+  const auto building = generate_building({}, 31);
+  RobotMapParams rp;
+  rp.rotation_rad = 0.9;
+  rp.wall_noise_m = 0.02;
+  const RobotMap robot = make_robot_map(building, rp, 32);
+  Matcher<> matcher;
+  const MatchResult plain = matcher.match(robot.grid, building.layout);
+  REQUIRE(plain.ok);
+  REQUIRE(plain.p_correct > 0.9);
+  CHECK(plain.p_correct == doctest::Approx(p_correct(decision_features(plain), matcher.params.decision)));
+
+  matcher.params.min_agreement = 1.01;  // the gate refuses everything: the model alone accepts
+  const MatchResult by_model = matcher.match(robot.grid, building.layout);
+  CHECK(by_model.ok);
+  matcher.params.decision.accept_p_correct = 1.0;  // ... unless it must be certain
+  const MatchResult refused = matcher.match(robot.grid, building.layout);
+  CHECK_FALSE(refused.ok);
+  CHECK(refused.reason.find("accept_p_correct") != std::string::npos);
+
+  Matcher<> strict;
+  strict.params.decision.min_p_correct = 0.999999;
+  const MatchResult too_unsure = strict.match(robot.grid, building.layout);
+  CHECK_FALSE(too_unsure.ok);
+  CHECK(too_unsure.reason.find("min_p_correct") != std::string::npos);
+  CHECK(too_unsure.T_dest_source.rotation == plain.T_dest_source.rotation);  // the same answer, refused
+
+  Matcher<> bad;
+  bad.params.decision.accept_p_correct = -0.1;
+  CHECK_THROWS_WITH_AS(bad.match(robot.grid, building.layout), doctest::Contains("accept_p_correct"), parameter_error);
 }

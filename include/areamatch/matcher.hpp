@@ -508,8 +508,8 @@ class Matcher {
                     detail::format_double(params.decision.accept_p_correct) + ")");
     }
     if (result.p_correct < params.decision.min_p_correct) {
-      return finish("the answer is more likely wrong than right: p_correct " + detail::format_fixed(result.p_correct, 3) +
-                    " < " + detail::format_double(params.decision.min_p_correct) + " (wall agreement " +
+      return finish("the answer is too likely wrong: p_correct " + detail::format_fixed(result.p_correct, 3) +
+                    " < min_p_correct " + detail::format_double(params.decision.min_p_correct) + " (wall agreement " +
                     detail::format_fixed(result.evidence.forward_wall_agreement, 3) + " / " +
                     detail::format_fixed(result.evidence.reverse_wall_agreement, 3) + ", rooms " +
                     detail::format_fixed(result.evidence.room_agreement, 3) + ", margin " +
@@ -569,8 +569,8 @@ class Matcher {
   }
 
   /// Ours: the best members of every cluster, ranked by how much of the source's walls land near
-  /// the destination's (sparse, then all wall points); the best few refined by ICP and scored. The answer is the
-  /// best of those, whatever cluster it came from.
+  /// the destination's (sparse, then all wall points); the best few refined by ICP and scored.
+  /// The answer is the best of those, whatever cluster it came from.
   std::vector<detail::ScoredTransform> select_whole_map(const MapView& source, const MapView& dest,
                                                         const detail::MapEdges& edges, const AreaRaster& source_raster,
                                                         const AreaRaster& source_fine, const AreaRaster& dest_fine,
@@ -663,7 +663,7 @@ class Matcher {
   detail::MapEdges map_edges(const MapView& source, const MapView& dest) const {
     const RefineParams& r = params.refinement;
     const auto max_points = static_cast<std::size_t>(r.max_points);
-    const double margin = std::max(r.gates_m.front(), params.wall_inlier_distance_m);
+    const double margin = std::max({r.gates_m.front(), params.wall_inlier_distance_m, params.candidate_wall_distance_m});
     detail::MapEdges e;
     e.source_points = detail::free_boundary_points(*source.grid, *source.graph, r.point_spacing_m, max_points);
     e.source_walls = detail::without_frontiers(*source.grid, e.source_points);
