@@ -9,6 +9,8 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
+#include <array>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -51,6 +53,41 @@ TEST_CASE("fit_decision: separates right from wrong, deterministic, refuses one-
   CHECK_THROWS_AS(bad.validate(), parameter_error);
 }
 
+TEST_CASE("leave_one_building_out: each example judged by a model fitted without its buildings") {
+  // Three buildings of right and wrong examples, and wrong pairs between buildings.
+  std::vector<DecisionSample> samples;
+  std::vector<std::array<std::size_t, 2>> buildings;
+  for (std::size_t b = 0; b < 3; ++b) {
+    for (int k = 0; k < 6; ++k) {
+      const double jitter = 0.01 * static_cast<double>(k) + 0.02 * static_cast<double>(b);
+      samples.push_back(sample(0.85 + jitter, 0.8 - jitter, 0.15 + jitter, 200.0, true));
+      buildings.push_back({b, b});
+      samples.push_back(sample(0.55 + jitter, 0.4 + jitter, 0.01 + 0.5 * jitter, 60.0, false));
+      buildings.push_back({b, b});
+    }
+    samples.push_back(sample(0.7, 0.5, 0.05, 90.0, false));
+    buildings.push_back({b, (b + 1) % 3});
+  }
+  const std::vector<double> predicted = leave_one_building_out(samples, buildings);
+  REQUIRE(predicted.size() == samples.size());
+  for (std::size_t i = 0; i < samples.size(); ++i) {
+    std::vector<double> by_fold;
+    for (std::size_t held : {buildings[i][0], buildings[i][1]}) {
+      std::vector<DecisionSample> train;
+      for (std::size_t j = 0; j < samples.size(); ++j) {
+        if (buildings[j][0] != held && buildings[j][1] != held) train.push_back(samples[j]);
+      }
+      by_fold.push_back(p_correct(samples[i].features, fit_decision(train)));
+    }
+    // A pair of two buildings keeps the less favourable of its two predictions.
+    const double expected = samples[i].correct ? std::min(by_fold[0], by_fold[1]) : std::max(by_fold[0], by_fold[1]);
+    CHECK(predicted[i] == doctest::Approx(expected).epsilon(1e-12));
+    if (buildings[i][0] == buildings[i][1]) CHECK((predicted[i] >= 0.5) == samples[i].correct);
+  }
+  buildings.pop_back();
+  CHECK_THROWS_AS(leave_one_building_out(samples, buildings), parameter_error);
+}
+
 TEST_CASE("the decision fitted without a generated building judges that building") {
   // Robot maps of several generated buildings (partly explored, turned, some mirrored), each
   // matched onto its own layout and onto every other building's layout.
@@ -90,23 +127,22 @@ TEST_CASE("the decision fitted without a generated building judges that building
   }
   REQUIRE(right_answers >= buildings - 1);
   constexpr double threshold = 0.5;  // the rule calibrate judges (DecisionParams keeps it off by default)
+  std::vector<DecisionSample> samples;
+  std::vector<std::array<std::size_t, 2>> building_of;
+  for (const Row& r : rows) {
+    samples.push_back(r.sample);
+    building_of.push_back({static_cast<std::size_t>(r.source_building), static_cast<std::size_t>(r.dest_building)});
+  }
+  const std::vector<double> predicted = leave_one_building_out(samples, building_of);
   int false_rejects = 0, false_accepts = 0, shipped_false_rejects = 0, shipped_false_accepts = 0;
-  for (int held = 0; held < buildings; ++held) {
-    std::vector<DecisionSample> train;
-    for (const Row& r : rows) {
-      if (r.source_building != held && r.dest_building != held) train.push_back(r.sample);
-    }
-    const DecisionParams model = fit_decision(train);
-    for (const Row& r : rows) {
-      if (r.source_building != held && r.dest_building != held) continue;
-      const bool accepted = p_correct(r.sample.features, model) >= threshold;
-      const bool shipped = p_correct(r.sample.features, DecisionParams{}) >= threshold;
-      if (r.source_building != held) continue;  // each row once: under its source's building
-      false_rejects += r.sample.correct && !accepted;
-      false_accepts += !r.sample.correct && accepted;
-      shipped_false_rejects += r.sample.correct && !shipped;
-      shipped_false_accepts += !r.sample.correct && shipped;
-    }
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const DecisionSample& s = rows[i].sample;
+    const bool accepted = predicted[i] >= threshold;
+    const bool shipped = p_correct(s.features, DecisionParams{}) >= threshold;
+    false_rejects += s.correct && !accepted;
+    false_accepts += !s.correct && accepted;
+    shipped_false_rejects += s.correct && !shipped;
+    shipped_false_accepts += !s.correct && shipped;
   }
   MESSAGE("held-out buildings: " << false_rejects << " false rejects of " << right_answers << ", " << false_accepts
                                  << " false accepts of " << rows.size() - static_cast<std::size_t>(right_answers)

@@ -12,6 +12,7 @@
 
 #include "test_support.hpp"
 
+#include <array>
 #include <map>
 #include <set>
 #include <string>
@@ -19,44 +20,28 @@
 
 using namespace areamatch;
 
-TEST_CASE("every non-ambiguous shared pair is matched correctly") {
-  const std::string shared = areamatch_test::shared_dir();
-  if (shared.empty()) return;
-  const Manifest manifest = load_manifest(shared + "/pairs.json");
-  REQUIRE(!manifest.pairs.empty());
-  const EvalOptions options;  // reflection allowed, the pair's door width, its YAML resolutions
-  for (const ManifestPair& pair : manifest.pairs) {
-    REQUIRE(pair.ground_truth);
-    const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, options);
-    REQUIRE_MESSAGE(row.failure.empty(), row.failure);
-    const MatchResult& r = row.result;
-    MESSAGE(pair.name << (pair.ambiguous ? " (ambiguous)" : "") << ": " << (row.correct ? "correct" : "WRONG")
-                      << ", rotation error " << row.error->rotation_error_deg << " deg, displacement "
-                      << row.error->mean_displacement_m << " m, confidence " << r.confidence << ", match "
-                      << 1000.0 * r.timings.match_s << " ms");
-    if (!pair.ambiguous) CHECK_MESSAGE(row.correct, pair.name);
-  }
-}
-
 namespace {
-
-/// Maps joined by a pair of one building form one building (as `cross_building_pairs` groups them).
-struct Buildings {
-  std::map<std::string, std::string> parent;
-  std::string find(const std::string& m) {
-    if (!parent.count(m)) parent[m] = m;
-    std::string r = m;
-    while (parent[r] != r) r = parent[r];
-    return parent[m] = r;
-  }
-  void join(const std::string& a, const std::string& b) { parent[find(a)] = find(b); }
-};
 
 struct JudgedRow {
   ManifestPair pair;
   PairEvaluation row;
   bool right = false;  ///< the transform is within correct_if (pairs of different buildings: never)
 };
+
+/// Every pair of shared/pairs.json, judged once per process (reflection allowed, the pair's door
+/// width, its YAML resolutions): the matching test and the decision's cross-validation use them.
+const std::vector<JudgedRow>& shared_pair_rows(const std::string& shared) {
+  static const std::vector<JudgedRow> rows = [&] {
+    const Manifest manifest = load_manifest(shared + "/pairs.json");
+    std::vector<JudgedRow> out;
+    for (const ManifestPair& pair : manifest.pairs) {
+      const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, EvalOptions{});
+      out.push_back({pair, row, row.transform_correct});
+    }
+    return out;
+  }();
+  return rows;
+}
 
 /// The shared pairs of different buildings every CI run checks (every 3rd of the 596), judged
 /// once per process: the rejection test and the decision's cross-validation both use them.
@@ -74,6 +59,25 @@ const std::vector<JudgedRow>& shared_cross_rows(const std::string& shared) {
 }
 
 }  // namespace
+
+TEST_CASE("every non-ambiguous shared pair is matched correctly") {
+  const std::string shared = areamatch_test::shared_dir();
+  if (shared.empty()) return;
+  const std::vector<JudgedRow>& rows = shared_pair_rows(shared);
+  REQUIRE(!rows.empty());
+  for (const JudgedRow& judged : rows) {
+    const ManifestPair& pair = judged.pair;
+    const PairEvaluation& row = judged.row;
+    REQUIRE(pair.ground_truth);
+    REQUIRE_MESSAGE(row.failure.empty(), row.failure);
+    const MatchResult& r = row.result;
+    MESSAGE(pair.name << (pair.ambiguous ? " (ambiguous)" : "") << ": " << (row.correct ? "correct" : "WRONG")
+                      << ", rotation error " << row.error->rotation_error_deg << " deg, displacement "
+                      << row.error->mean_displacement_m << " m, confidence " << r.confidence << ", match "
+                      << 1000.0 * r.timings.match_s << " ms");
+    if (!pair.ambiguous) CHECK_MESSAGE(row.correct, pair.name);
+  }
+}
 
 TEST_CASE("pairs of maps of different shared buildings are rejected (every 3rd of the 596)") {
   const std::string shared = areamatch_test::shared_dir();
@@ -113,6 +117,23 @@ TEST_CASE("the manifest reader refuses bad manifests with the pair and field nam
   CHECK(ok.pairs[0].source == dir + "/a.yaml");
   CHECK(ok.pairs[0].destination == "/abs/b.yaml");
   CHECK_FALSE(ok.pairs[0].ground_truth);
+}
+
+TEST_CASE("BuildingGroups: maps joined by pairs of one building, transitively, numbered as first named") {
+  BuildingGroups groups;
+  CHECK(groups.add("a") == 0);
+  CHECK(groups.add("b") == 1);
+  groups.join("c", "b");  // c is new: number 2
+  groups.join("d", "e");
+  CHECK(groups.size() == 5);
+  CHECK(groups.building("c") == 1);
+  CHECK(groups.building("b") == 1);
+  CHECK(groups.building("a") == 0);
+  CHECK(groups.building("e") == 3);
+  groups.join("e", "a");  // joins {d, e} with {a}: named by a, the first
+  CHECK(groups.building("d") == 0);
+  CHECK(groups.map(groups.building("d")) == "a");
+  CHECK(groups.building("c") != groups.building("d"));
 }
 
 TEST_CASE("manifest: different_buildings pairs, and the cross-building pairs of a manifest") {
@@ -197,44 +218,38 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
   // other two places, the shared pairs and every 3rd shared pair of different buildings) must
   // still judge that place: a rule that only works where it was fitted fails here.
   const std::size_t handheld_rows = rows.size();
-  const Manifest shared_manifest = load_manifest(shared + "/pairs.json");
-  for (const ManifestPair& pair : shared_manifest.pairs) {
-    if (pair.ambiguous) continue;
-    const PairEvaluation row = evaluate_pair(pair, shared_manifest.correct_if, EvalOptions{});
-    rows.push_back({pair, row, row.transform_correct});
+  for (const JudgedRow& r : shared_pair_rows(shared)) {
+    if (!r.pair.ambiguous) rows.push_back(r);
   }
   for (const JudgedRow& r : shared_cross_rows(shared)) rows.push_back(r);
-  Buildings buildings;
+  BuildingGroups buildings;
+  std::vector<DecisionSample> samples;
+  std::vector<std::array<std::size_t, 2>> building_of;
   for (const JudgedRow& r : rows) {
-    buildings.find(r.pair.source);
-    buildings.find(r.pair.destination);
+    buildings.add(r.pair.source);
+    buildings.add(r.pair.destination);
     if (!r.pair.different_buildings) buildings.join(r.pair.source, r.pair.destination);
   }
-  std::set<std::string> places;
-  for (std::size_t i = 0; i < handheld_rows; ++i) places.insert(buildings.find(rows[i].pair.source));
+  for (const JudgedRow& r : rows) {
+    samples.push_back({decision_features(r.row.result), r.right});
+    building_of.push_back({buildings.building(r.pair.source), buildings.building(r.pair.destination)});
+  }
+  std::set<std::size_t> places;
+  for (std::size_t i = 0; i < handheld_rows; ++i) places.insert(building_of[i][0]);
   REQUIRE(places.size() == 3);
+  const std::vector<double> predicted = leave_one_building_out(samples, building_of);
   const MatcherParams defaults;
   std::size_t right = 0, false_rejects = 0, wrong = 0, false_accepts = 0;
-  for (const std::string& held : places) {
-    std::vector<DecisionSample> train;
-    for (const JudgedRow& r : rows) {
-      if (buildings.find(r.pair.source) != held && buildings.find(r.pair.destination) != held) {
-        train.push_back({decision_features(r.row.result), r.right});
-      }
-    }
-    const DecisionParams model = fit_decision(train);
-    for (std::size_t i = 0; i < handheld_rows; ++i) {
-      const JudgedRow& r = rows[i];
-      if (buildings.find(r.pair.source) != held) continue;  // each row once, under its source's place
-      const bool accepted = r.row.result.evidence.agreement >= defaults.min_agreement ||
-                            p_correct(decision_features(r.row.result), model) >= defaults.decision.accept_p_correct;
-      if (r.right) {
-        ++right;
-        false_rejects += !accepted;
-      } else {
-        ++wrong;
-        false_accepts += accepted;
-      }
+  for (std::size_t i = 0; i < handheld_rows; ++i) {
+    const JudgedRow& r = rows[i];
+    const bool accepted = r.row.result.evidence.agreement >= defaults.min_agreement ||
+                          predicted[i] >= defaults.decision.accept_p_correct;
+    if (r.right) {
+      ++right;
+      false_rejects += !accepted;
+    } else {
+      ++wrong;
+      false_accepts += accepted;
     }
   }
   MESSAGE("leave one place out: " << false_rejects << " of " << right << " right answers rejected, " << false_accepts << " of "

@@ -24,6 +24,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <numeric>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -35,12 +36,15 @@ using areamatch::detail::format_fixed;
 using areamatch_cli::Args;
 using areamatch_cli::assign_buildings;
 using areamatch_cli::CalibrationRow;
+using areamatch_cli::choose_rule;
 using areamatch_cli::DecisionCounts;
 using areamatch_cli::leave_one_building_out;
+using areamatch_cli::nested_rule_cv;
 using areamatch_cli::percent;
 using areamatch_cli::read_calibration_rows;
 using areamatch_cli::reliability;
 using areamatch_cli::reliability_svg;
+using areamatch_cli::Rule;
 using areamatch_cli::ReliabilityBin;
 using areamatch_cli::UsageError;
 
@@ -586,10 +590,16 @@ const char* kCalibrateHelp =
     "  --l2 L             L2 penalty on the weights (default 1)\n"
     "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.9)\n"
     "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
-    "  --svg OUT.svg      the reliability diagram (cross-validated)\n";
+    "  --svg OUT.svg      the reliability diagram (cross-validated)\n"
+    "  --choose-rule      also choose A and P from data (the fewest false rejects with at most F of the\n"
+    "                     wrong answers accepted, judged on leave-one-building-out predictions) and\n"
+    "                     measure that choice by nested leave-one-building-out cross-validation: each\n"
+    "                     building is judged by a model and thresholds chosen without it (slow: one\n"
+    "                     inner cross-validation per building)\n"
+    "  --max-false-accept F  the bound for --choose-rule (default 0.005)\n";
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help"}, {"l2", "accept-p", "min-agreement", "svg"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "svg", "max-false-accept"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -609,21 +619,18 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::vector<areamatch::DecisionSample> all;
   for (const auto& r : rows) all.push_back(r.sample);
   const areamatch::DecisionParams fitted = areamatch::fit_decision(all, l2, base);
-  const std::vector<double> predicted = leave_one_building_out(rows, buildings.size(), l2, base);
+  const std::vector<double> predicted = leave_one_building_out(rows, l2, base);
 
-  auto rule = [&](const CalibrationRow& r, double p, double accept_p, double min_agreement) {
-    return p >= accept_p || r.agreement >= min_agreement;
-  };
+  const Rule rule{base.accept_p_correct, gate}, model_half{0.5, 2.0}, gate_alone{2.0, gate};
   std::vector<DecisionCounts> per_building(buildings.size());
   DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const CalibrationRow& r = rows[i];
-    const bool accepted = rule(r, predicted[i], base.accept_p_correct, gate);
+    const bool accepted = rule.accepts(r, predicted[i]);
     cv_total.add(r.sample.correct, r.different_buildings, accepted);
-    in_sample_total.add(r.sample.correct, r.different_buildings,
-                        rule(r, areamatch::p_correct(r.sample.features, fitted), base.accept_p_correct, gate));
-    cv_model_half.add(r.sample.correct, r.different_buildings, rule(r, predicted[i], 0.5, 2.0));
-    gate_only.add(r.sample.correct, r.different_buildings, rule(r, 0.0, 2.0, gate));
+    in_sample_total.add(r.sample.correct, r.different_buildings, rule.accepts(r, areamatch::p_correct(r.sample.features, fitted)));
+    cv_model_half.add(r.sample.correct, r.different_buildings, model_half.accepts(r, predicted[i]));
+    gate_only.add(r.sample.correct, r.different_buildings, gate_alone.accepts(r, 0.0));
     per_building[static_cast<std::size_t>(r.source_building)].add(r.sample.correct, r.different_buildings, accepted);
     if (r.dest_building != r.source_building) {
       per_building[static_cast<std::size_t>(r.dest_building)].add(r.sample.correct, r.different_buildings, accepted);
@@ -663,6 +670,37 @@ int run_calibrate(const std::vector<std::string>& tokens) {
               << "\n";
   }
   if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(table));
+  if (args.flag("choose-rule")) {
+    const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
+    if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
+    std::vector<std::size_t> all_rows(rows.size());
+    std::iota(all_rows.begin(), all_rows.end(), std::size_t{0});
+    const Rule shipped = choose_rule(rows, all_rows, predicted, max_false_accept);
+    std::vector<Rule> chosen;
+    const std::vector<char> accepted = nested_rule_cv(rows, buildings.size(), l2, base, max_false_accept, chosen);
+    std::vector<DecisionCounts> nested_per_building(buildings.size());
+    DecisionCounts nested_total;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const CalibrationRow& r = rows[i];
+      nested_total.add(r.sample.correct, r.different_buildings, accepted[i]);
+      nested_per_building[static_cast<std::size_t>(r.source_building)].add(r.sample.correct, r.different_buildings, accepted[i]);
+      if (r.dest_building != r.source_building) {
+        nested_per_building[static_cast<std::size_t>(r.dest_building)].add(r.sample.correct, r.different_buildings, accepted[i]);
+      }
+    }
+    std::map<std::pair<double, double>, int> folds;
+    for (const Rule& fold_rule : chosen) ++folds[{fold_rule.min_agreement, fold_rule.accept_p}];
+    std::cout << "\nrule chosen on all rows (at most " << format_double(max_false_accept)
+              << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
+              << format_double(shipped.min_agreement) << " or p_correct >= " << format_double(shipped.accept_p)
+              << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
+    for (const auto& [thresholds, n] : folds) {
+      std::cout << " [agreement " << format_double(thresholds.first) << ", p " << format_double(thresholds.second) << "] x" << n;
+    }
+    std::cout << "\n\nnested leave-one-building-out (model and thresholds chosen without the building):\n";
+    for (std::size_t b = 0; b < buildings.size(); ++b) std::cout << line(buildings[b], nested_per_building[b]);
+    std::cout << line("total (nested cross-validation)", nested_total);
+  }
   return 0;
 }
 

@@ -5,9 +5,11 @@
 // pair that touches that building. Program code, not library API.
 
 #include <areamatch/error.hpp>
+#include <areamatch/io/manifest.hpp>
 #include <areamatch/match/decision.hpp>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <filesystem>
@@ -111,35 +113,22 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
 }
 
 /// Buildings: maps joined by a pair of one building are one building. Returns their names (the
-/// first map's file stem of each).
+/// first map's folder and file stem of each).
 inline std::vector<std::string> assign_buildings(std::vector<CalibrationRow>& rows) {
-  std::map<std::string, std::size_t> index;
-  std::vector<std::size_t> parent;
-  std::vector<std::string> first_map;
-  auto id = [&](const std::string& path) {
-    const auto [it, added] = index.emplace(path, parent.size());
-    if (added) {
-      parent.push_back(parent.size());
-      first_map.push_back(path);
-    }
-    return it->second;
-  };
-  auto find = [&](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  areamatch::BuildingGroups groups;
   for (const auto& r : rows) {
-    const std::size_t a = id(r.source), b = id(r.destination);
-    if (!r.different_buildings) parent[find(a)] = find(b);
+    groups.add(r.source);
+    groups.add(r.destination);
+    if (!r.different_buildings) groups.join(r.source, r.destination);
   }
   std::map<std::size_t, int> building_of_root;
   std::vector<std::string> names;
   for (auto& r : rows) {
     for (auto [path, out] : {std::pair{&r.source, &r.source_building}, std::pair{&r.destination, &r.dest_building}}) {
-      const std::size_t root = find(id(*path));
+      const std::size_t root = groups.building(*path);
       const auto [it, added] = building_of_root.emplace(root, static_cast<int>(names.size()));
       if (added) {
-        const std::filesystem::path p(first_map[root]);
+        const std::filesystem::path p(groups.map(root));
         names.push_back(p.parent_path().filename().string() + "/" + p.stem().string());
       }
       *out = it->second;
@@ -171,30 +160,110 @@ struct DecisionCounts {
   }
 };
 
-/// Leave-one-building-out predictions: `predicted[i]` is row i's probability from the model
-/// fitted on the rows that touch none of row i's buildings. A row of two buildings is predicted
-/// once per building; the higher probability (the less favourable for a wrong row) is kept.
-inline std::vector<double> leave_one_building_out(const std::vector<CalibrationRow>& rows, std::size_t buildings,
-                                                  double l2, const areamatch::DecisionParams& base) {
-  std::vector<double> predicted(rows.size(), -1.0);
-  for (std::size_t b = 0; b < buildings; ++b) {
-    const int held = static_cast<int>(b);
-    std::vector<areamatch::DecisionSample> train;
-    std::vector<std::size_t> test;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      const bool touches = rows[i].source_building == held || rows[i].dest_building == held;
-      if (touches) test.push_back(i);
-      else train.push_back(rows[i].sample);
-    }
-    if (test.empty()) continue;
-    const areamatch::DecisionParams model = areamatch::fit_decision(train, l2, base);
-    for (std::size_t i : test) {
-      const double p = areamatch::p_correct(rows[i].sample.features, model);
-      predicted[i] = rows[i].sample.correct ? (predicted[i] < 0.0 ? p : std::min(predicted[i], p))
-                                            : std::max(predicted[i], p);
+/// Leave-one-building-out predictions of the rows (`areamatch::leave_one_building_out`).
+inline std::vector<double> leave_one_building_out(const std::vector<CalibrationRow>& rows, double l2,
+                                                  const areamatch::DecisionParams& base) {
+  std::vector<areamatch::DecisionSample> samples;
+  std::vector<std::array<std::size_t, 2>> buildings;
+  for (const auto& r : rows) {
+    samples.push_back(r.sample);
+    buildings.push_back({static_cast<std::size_t>(r.source_building), static_cast<std::size_t>(r.dest_building)});
+  }
+  return areamatch::leave_one_building_out(samples, buildings, l2, base);
+}
+
+/// The matcher's acceptance rule: accepted when agreement >= `min_agreement` or p_correct >=
+/// `accept_p` (a threshold above 1 turns its part off).
+struct Rule {
+  double accept_p = 0.9, min_agreement = 0.835;
+  bool accepts(const CalibrationRow& r, double p) const { return p >= accept_p || r.agreement >= min_agreement; }
+};
+
+/// The thresholds `choose_rule` tries (above 1: that part off).
+inline const std::vector<double>& accept_p_grid() {
+  static const std::vector<double> grid = {0.5, 0.6, 0.7, 0.8, 0.85, 0.9, 0.95, 0.98, 0.99, 1.01};
+  return grid;
+}
+inline const std::vector<double>& min_agreement_grid() {
+  static const std::vector<double> grid = {0.8, 0.81, 0.82, 0.83, 0.835, 0.84, 0.85, 0.86, 0.87, 0.88, 0.9, 1.01};
+  return grid;
+}
+
+/// The rule with the fewest false rejects on rows `subset` (judged by `predicted`, one per row of
+/// `subset`) whose share of wrong answers accepted stays at or below `max_false_accept`; ties go
+/// to fewer false accepts, then to the stricter thresholds. When no rule keeps the bound, the one
+/// with the fewest false accepts.
+inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vector<std::size_t>& subset,
+                        const std::vector<double>& predicted, double max_false_accept) {
+  std::size_t wrong = 0;
+  for (std::size_t i : subset) wrong += !rows[i].sample.correct;
+  const double allowed = max_false_accept * static_cast<double>(wrong);
+  Rule best;
+  bool best_keeps = false;
+  std::size_t best_rejects = 0, best_accepts = 0;
+  bool first = true;
+  for (double accept_p : accept_p_grid()) {
+    for (double min_agreement : min_agreement_grid()) {
+      const Rule rule{accept_p, min_agreement};
+      std::size_t rejects = 0, accepts = 0;
+      for (std::size_t k = 0; k < subset.size(); ++k) {
+        const CalibrationRow& r = rows[subset[k]];
+        const bool accepted = rule.accepts(r, predicted[k]);
+        rejects += r.sample.correct && !accepted;
+        accepts += !r.sample.correct && accepted;
+      }
+      const bool keeps = static_cast<double>(accepts) <= allowed;
+      // The grids run from lenient to strict: on a tie the later (stricter) rule wins.
+      const bool better = first || (keeps && !best_keeps) ||
+                          (keeps == best_keeps && (keeps ? std::pair(rejects, accepts) <= std::pair(best_rejects, best_accepts)
+                                                         : std::pair(accepts, rejects) <= std::pair(best_accepts, best_rejects)));
+      if (better) {
+        best = rule;
+        best_keeps = keeps;
+        best_rejects = rejects;
+        best_accepts = accepts;
+        first = false;
+      }
     }
   }
-  return predicted;
+  return best;
+}
+
+/// Nested leave-one-building-out cross-validation of the whole procedure: for each building, the
+/// model is fitted and the rule's thresholds chosen (`choose_rule` on the other buildings' own
+/// leave-one-building-out predictions) without any pair that touches it, and then its pairs are
+/// judged. A pair of two buildings is judged under both and counts as accepted only when both
+/// accept a right answer, or either accepts a wrong one. Returns whether each row is accepted;
+/// `chosen` gets each fold's rule.
+inline std::vector<char> nested_rule_cv(const std::vector<CalibrationRow>& rows, std::size_t buildings, double l2,
+                                        const areamatch::DecisionParams& base, double max_false_accept,
+                                        std::vector<Rule>& chosen) {
+  std::vector<int> verdict(rows.size(), -1);
+  for (std::size_t held = 0; held < buildings; ++held) {
+    std::vector<std::size_t> train, test;
+    std::vector<areamatch::DecisionSample> samples;
+    std::vector<std::array<std::size_t, 2>> groups;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& r = rows[i];
+      if (static_cast<std::size_t>(r.source_building) == held || static_cast<std::size_t>(r.dest_building) == held) {
+        test.push_back(i);
+      } else {
+        train.push_back(i);
+        samples.push_back(r.sample);
+        groups.push_back({static_cast<std::size_t>(r.source_building), static_cast<std::size_t>(r.dest_building)});
+      }
+    }
+    if (test.empty()) continue;
+    const Rule rule = choose_rule(rows, train, areamatch::leave_one_building_out(samples, groups, l2, base), max_false_accept);
+    chosen.push_back(rule);
+    const areamatch::DecisionParams model = areamatch::fit_decision(samples, l2, base);
+    for (std::size_t i : test) {
+      const bool accepted = rule.accepts(rows[i], areamatch::p_correct(rows[i].sample.features, model));
+      int& v = verdict[i];
+      v = v < 0 ? accepted : rows[i].sample.correct ? (v && accepted) : (v || accepted);
+    }
+  }
+  return std::vector<char>(verdict.begin(), verdict.end());
 }
 
 inline std::string percent(std::size_t part, std::size_t whole) {

@@ -24,9 +24,11 @@
 
 #include <yaml-cpp/yaml.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <optional>
 #include <set>
 #include <string>
@@ -170,6 +172,39 @@ inline Manifest parse_manifest(const std::string& text, const std::string& path)
   return m;
 }
 
+/// Maps grouped into buildings: maps joined by a pair of one building are one building
+/// (transitively). Maps are numbered in the order they are first named.
+class BuildingGroups {
+ public:
+  /// The map's number (a new one when the map is new: its own building).
+  std::size_t add(const std::string& map) {
+    const auto [it, added] = index_.emplace(map, parent_.size());
+    if (added) {
+      parent_.push_back(parent_.size());
+      maps_.push_back(map);
+    }
+    return it->second;
+  }
+  /// Puts two maps into one building.
+  void join(const std::string& a, const std::string& b) {
+    const std::size_t ra = find(add(a)), rb = find(add(b));
+    if (ra != rb) parent_[std::max(ra, rb)] = std::min(ra, rb);
+  }
+  /// The building of map number `i`: the number of its building's first-named map.
+  std::size_t find(std::size_t i) {
+    while (parent_[i] != i) i = parent_[i] = parent_[parent_[i]];
+    return i;
+  }
+  std::size_t building(const std::string& map) { return find(add(map)); }
+  const std::string& map(std::size_t i) const { return maps_[i]; }
+  std::size_t size() const { return maps_.size(); }
+
+ private:
+  std::map<std::string, std::size_t> index_;
+  std::vector<std::size_t> parent_;
+  std::vector<std::string> maps_;
+};
+
 /// Pairs of maps that must not match, made from a manifest's pairs: maps joined by a pair (of
 /// the same building) form one building, and every two maps of different buildings make a pair
 /// marked `different_buildings` (each unordered combination once, reflection allowed). A map
@@ -181,34 +216,28 @@ inline std::vector<ManifestPair> cross_building_pairs(const Manifest& m) {
     std::string stem;
   };
   std::vector<MapEntry> maps;
-  std::vector<std::size_t> parent;
-  auto find = [&](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  BuildingGroups buildings;
   auto add = [&](const std::string& path, const std::optional<double>& resolution, const std::optional<double>& door) {
-    for (std::size_t i = 0; i < maps.size(); ++i) {
-      if (maps[i].path == path) return i;
-    }
+    const std::size_t i = buildings.add(path);
+    if (i < maps.size()) return i;
     // The name: the path relative to the manifest's folder, without its extension.
     const std::string folder = detail::resolve_relative(m.path, "");
     std::string stem = path.compare(0, folder.size(), folder) == 0 ? path.substr(folder.size()) : path;
     const auto dot = stem.find_last_of('.');
     if (dot != std::string::npos && dot > 0 && stem.find('/', dot) == std::string::npos) stem.resize(dot);
     maps.push_back({path, resolution, door, stem});
-    parent.push_back(parent.size());
-    return maps.size() - 1;
+    return i;
   };
   for (const ManifestPair& pair : m.pairs) {
     if (pair.different_buildings) continue;
-    const std::size_t a = add(pair.source, pair.source_resolution, pair.door_width_m);
-    const std::size_t b = add(pair.destination, pair.destination_resolution, pair.door_width_m);
-    parent[find(a)] = find(b);
+    add(pair.source, pair.source_resolution, pair.door_width_m);
+    add(pair.destination, pair.destination_resolution, pair.door_width_m);
+    buildings.join(pair.source, pair.destination);
   }
   std::vector<ManifestPair> out;
   for (std::size_t i = 0; i < maps.size(); ++i) {
     for (std::size_t j = i + 1; j < maps.size(); ++j) {
-      if (find(i) == find(j)) continue;
+      if (buildings.find(i) == buildings.find(j)) continue;
       ManifestPair pair;
       pair.name = maps[i].stem + " x " + maps[j].stem;
       pair.kind = "different_buildings";

@@ -148,4 +148,37 @@ inline DecisionParams fit_decision(const std::vector<DecisionSample>& samples, d
   return out;
 }
 
+/// Leave-one-building-out predictions: `predicted[i]` is example i's probability from the model
+/// fitted on the examples that touch none of its buildings (`buildings[i]`: the buildings of its
+/// two maps, numbered from 0; the same number twice for a pair of one building). An example of
+/// two buildings is predicted once per building and keeps the less favourable probability (the
+/// lower for a right answer, the higher for a wrong one). Throws `parameter_error` when the
+/// sizes differ or a fold's training examples are all of one kind.
+inline std::vector<double> leave_one_building_out(const std::vector<DecisionSample>& samples,
+                                                  const std::vector<std::array<std::size_t, 2>>& buildings,
+                                                  double l2 = 1.0, const DecisionParams& base = {}) {
+  if (samples.size() != buildings.size()) {
+    throw parameter_error("leave_one_building_out: one pair of buildings per example");
+  }
+  std::size_t count = 0;
+  for (const auto& b : buildings) count = std::max({count, b[0] + 1, b[1] + 1});
+  std::vector<double> predicted(samples.size(), -1.0);
+  for (std::size_t held = 0; held < count; ++held) {
+    std::vector<DecisionSample> train;
+    std::vector<std::size_t> test;
+    for (std::size_t i = 0; i < samples.size(); ++i) {
+      if (buildings[i][0] == held || buildings[i][1] == held) test.push_back(i);
+      else train.push_back(samples[i]);
+    }
+    if (test.empty()) continue;
+    const DecisionParams model = fit_decision(train, l2, base);
+    for (std::size_t i : test) {
+      const double p = p_correct(samples[i].features, model);
+      double& out = predicted[i];
+      out = out < 0.0 ? p : samples[i].correct ? std::min(out, p) : std::max(out, p);
+    }
+  }
+  return predicted;
+}
+
 }  // namespace areamatch
