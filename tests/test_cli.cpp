@@ -278,15 +278,23 @@ TEST_CASE("eval --cross-buildings: the maps of different generated buildings are
 
 TEST_CASE("calibrate: fits the decision on eval results, cross-validated by building; bad input exits 2") {
   const std::string dir = areamatch_test::temp_dir() + "/calibrate";
-  REQUIRE(run("generate " + dir + " --count 3 --seed 70 --width 15 --height 11").status == 0);
+  REQUIRE(run("generate " + dir + " --count 4 --seed 70 --width 15 --height 11").status == 0);
   const std::string out = areamatch_test::temp_dir() + "/calibrate_out";
   REQUIRE(run("eval " + dir + "/pairs.json --cross-buildings --out " + out, false).status == 0);
   const Run fit = run("calibrate " + out + "/results.csv --svg " + out + "/reliability.svg", false);
   INFO(fit.out);
   CHECK(fit.status == 0);
-  CHECK(fit.out.find("3 buildings") != std::string::npos);
+  CHECK(fit.out.find("4 buildings") != std::string::npos);
   CHECK(fit.out.find("total (cross-validated)") != std::string::npos);
   CHECK(fit.out.find("fitted on all rows: bias = ") != std::string::npos);
+  // The thresholds chosen from data, the choice itself cross-validated (nested).
+  const Run chosen = run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 0.01", false);
+  INFO(chosen.out);
+  CHECK(chosen.status == 0);
+  CHECK(chosen.out.find("rule chosen on all rows") != std::string::npos);
+  CHECK(chosen.out.find("rules chosen in the 4 folds") != std::string::npos);
+  CHECK(chosen.out.find("total (nested cross-validation) | ") != std::string::npos);
+  CHECK(run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 2").status == 2);
   CHECK(read_text(out + "/reliability.svg").find("<svg") != std::string::npos);
   CHECK(run("calibrate " + out + "/missing.csv").status == 2);
   CHECK(run("calibrate").status == 2);

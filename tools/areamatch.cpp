@@ -677,7 +677,13 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     std::iota(all_rows.begin(), all_rows.end(), std::size_t{0});
     const Rule shipped = choose_rule(rows, all_rows, predicted, max_false_accept);
     std::vector<Rule> chosen;
-    const std::vector<char> accepted = nested_rule_cv(rows, buildings.size(), l2, base, max_false_accept, chosen);
+    std::vector<char> accepted;
+    try {
+      accepted = nested_rule_cv(rows, buildings.size(), l2, base, max_false_accept, chosen);
+    } catch (const areamatch::parameter_error& e) {
+      throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
+                       e.what() + "); nested cross-validation needs more buildings with right answers");
+    }
     std::vector<DecisionCounts> nested_per_building(buildings.size());
     DecisionCounts nested_total;
     for (std::size_t i = 0; i < rows.size(); ++i) {
