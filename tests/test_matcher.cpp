@@ -475,3 +475,44 @@ TEST_CASE("point-to-line ICP pins a map sliding along a corridor to its room div
   MESSAGE("point-to-point ends " << point_fit.translation.norm() << " m off, point-to-line " << line_fit.translation.norm() << " m");
   CHECK(line_fit.translation.norm() <= point_fit.translation.norm());
 }
+TEST_CASE("prepared maps: the same results as matching the grids, bit for bit; a mismatched matcher refuses them") {
+  const auto c = areamatch_test::synthetic_case(11);
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  const auto source = matcher.prepare(c.robot.grid);
+  const auto dest = matcher.prepare(c.building.layout);
+  const std::string expected = without_timings(matcher.match(c.robot.grid, c.building.layout));
+  const MatchResult prepared = matcher.match(source, dest);
+  CHECK(without_timings(prepared) == expected);
+  CHECK(prepared.timings.prepare_s == 0.0);
+  CHECK(without_timings(matcher.match(c.robot.grid, dest)) == expected);
+  CHECK(without_timings(matcher.match(source, dest)) == expected);  // reused: unchanged
+  CHECK(source.graph().areas.size() == prepared.statistics.source_areas);
+  CHECK(dest.grid() == c.building.layout);
+
+  const PaperMatcher paper;
+  CHECK(without_timings(paper.match(paper.prepare(c.robot.grid), paper.prepare(c.building.layout))) ==
+        without_timings(paper.match(c.robot.grid, c.building.layout)));
+
+  // The source's scale unknown: onto a prepared destination as onto its grid.
+  Matcher<> scaled = matcher;
+  scaled.params.estimate_scale = true;
+  if (!areamatch_test::quick_tests()) {
+    CHECK(without_timings(scaled.match(c.robot.grid, dest)) == without_timings(scaled.match(c.robot.grid, c.building.layout)));
+  }
+  CHECK_THROWS_WITH_AS(scaled.match(source, dest), doctest::Contains("estimate_scale"), parameter_error);
+
+  Matcher<> other = matcher;
+  other.params.coarse_cell_m *= 2.0;
+  CHECK_THROWS_WITH_AS(other.match(source, dest), doctest::Contains("prepared by a matcher with other"), parameter_error);
+  other = matcher;
+  other.params.min_agreement = 0.5;  // the decision is not part of a prepared map
+  CHECK_NOTHROW(other.match(source, dest));
+
+  // A map without areas prepares, and matching it says why it cannot.
+  const OccupancyGrid walls(40, 40, 0.05, {}, CellState::occupied);
+  const auto empty = matcher.prepare(walls);
+  const MatchResult none = matcher.match(source, empty);
+  CHECK_FALSE(none.ok);
+  CHECK(none.reason.find("no areas") != std::string::npos);
+}

@@ -79,6 +79,22 @@ TEST_CASE("every non-ambiguous shared pair is matched correctly") {
   }
 }
 
+TEST_CASE("prepared maps give the same results as their grids on every shared pair") {
+  const std::string shared = areamatch_test::shared_dir();
+  if (shared.empty()) return;
+  const Manifest manifest = load_manifest(shared + "/pairs.json");
+  for (const ManifestPair& pair : manifest.pairs) {
+    const MapPairOptions options = pair_options(pair, EvalOptions{});
+    const MapPairRun run = match_map_files(pair.source, pair.destination, options);
+    Matcher<> matcher;
+    matcher.params.allow_reflection = options.allow_reflection;
+    const MatchResult prepared =
+        matcher.match(matcher.prepare(run.source, run.source_graph), matcher.prepare(run.dest, run.dest_graph));
+    const std::string a = match_result_json(prepared), b = match_result_json(run.result);
+    CHECK_MESSAGE(a.substr(0, a.find("\"timings\"")) == b.substr(0, b.find("\"timings\"")), pair.name);
+  }
+}
+
 TEST_CASE("pairs of maps of different shared buildings are rejected (every 3rd of the 596)") {
   const std::string shared = areamatch_test::shared_dir();
   if (shared.empty()) return;

@@ -198,6 +198,33 @@ struct ScoredTransform {
   double score = 0.0;
 };
 
+/// What matching builds from one map alone, the same whichever side the map is on
+/// (`Matcher::prepare`).
+template <class Descriptors>
+struct MapData {
+  Descriptors descriptors;                   ///< the Features policy's, per area
+  AreaRaster coarse;                         ///< area-covered free space on coarse cells
+  std::optional<AreaRaster> fine_own;        ///< on fine cells, when they differ from the coarse ones
+  double wall_direction = 0.0;               ///< for wall-direction hypotheses
+  std::vector<Eigen::Vector2d> edge_points;  ///< sparse free-space edge: what moves (ICP, scores)
+  std::vector<Eigen::Vector2d> walls;        ///< edge_points without frontiers
+  BoundaryLookup lookup;                     ///< dense free-space edge: what is landed on
+  const AreaRaster& fine() const { return fine_own ? *fine_own : coarse; }
+};
+
+/// The parameters that shape `MapData`: a prepared map serves the matchers that agree on them.
+struct MapDataKey {
+  double coarse_cell_m = 0.0, fine_cell_m = 0.0, point_spacing_m = 0.0, lookup_cell_m = 0.0, margin_m = 0.0,
+         normal_radius_m = 0.0;
+  int max_points = 0;
+  bool wall_directions = false;
+  bool operator==(const MapDataKey& o) const {
+    return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
+           lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
+           max_points == o.max_points && wall_directions == o.wall_directions;
+  }
+};
+
 
 }  // namespace detail
 
@@ -229,6 +256,86 @@ class Matcher {
   Matcher(MatcherParams p, Segmenter s, Features f = {}, Weights w = {}, Clusterer c = {})
       : segmenter(std::move(s)), features(std::move(f)), weights(std::move(w)), clusterer(std::move(c)),
         params(std::move(p)) {}
+
+  /// The Features policy's per-area descriptors.
+  using Descriptors =
+      std::decay_t<decltype(std::declval<const Features&>().describe(std::declval<const AreaGraph&>()))>;
+
+ private:
+  /// One map as matching reads it; `data` null: built for this match.
+  struct MapView {
+    const OccupancyGrid* grid;
+    const AreaGraph* graph;
+    const detail::MapData<Descriptors>* data;
+  };
+
+ public:
+
+  /// A map made ready for matching (`prepare`): its grid, its Area Graph and what matching builds
+  /// from one map alone (the features' descriptors, coarse and fine rasters, wall direction,
+  /// free-space edges and their lookup), built once and reused by any number of `match` calls:
+  /// a floor plan prepared once localises any number of robot maps, and merging N maps needs N
+  /// preparations, not N². Matching prepared maps gives the same result, bit for bit, as
+  /// matching their grids and graphs. Tied to the parameters that shape that data (cell sizes,
+  /// edge spacing, lookups, wall directions): a matcher that differs there refuses it.
+  class PreparedMap {
+   public:
+    const OccupancyGrid& grid() const { return grid_; }
+    const AreaGraph& graph() const { return graph_; }
+
+   private:
+    friend class Matcher;
+    OccupancyGrid grid_;
+    AreaGraph graph_;
+    detail::MapData<Descriptors> data_;
+    detail::MapDataKey key_;
+  };
+
+  /// Segments `grid` with `segmenter` and prepares it for matching.
+  PreparedMap prepare(const OccupancyGrid& grid) const { return prepare(grid, segmenter.segment(grid)); }
+
+  /// Prepares a map already segmented (by anything, e.g. with its own door width); the graph
+  /// must come from the grid.
+  PreparedMap prepare(const OccupancyGrid& grid, AreaGraph graph) const {
+    params.validate();
+    check_graph(grid, graph, "prepared");
+    PreparedMap m;
+    m.grid_ = grid;
+    m.graph_ = std::move(graph);
+    m.key_ = data_key(true);
+    if (!m.graph_.areas.empty()) m.data_ = map_data(m.grid_, m.graph_, true);
+    return m;
+  }
+
+  /// Matches two prepared maps. Not with `params.estimate_scale` (the source is re-segmented at
+  /// each candidate scale: match its grid onto the prepared destination instead).
+  MatchResult match(const PreparedMap& source, const PreparedMap& dest) const {
+    if (params.estimate_scale) {
+      throw parameter_error("Matcher::match: estimate_scale re-segments the source at each candidate scale; pass the "
+                            "source grid (match(source_grid, prepared_dest)), not a prepared source");
+    }
+    check_prepared(source, "source");
+    check_prepared(dest, "destination");
+    return match_graphs(view(source), view(dest));
+  }
+
+  /// Segments `source` with `segmenter` and matches it onto a prepared map (estimating the
+  /// source's scale too with `params.estimate_scale`): a robot map against a prepared floor plan.
+  MatchResult match(const OccupancyGrid& source, const PreparedMap& dest) const {
+    check_prepared(dest, "destination");
+    const auto start = std::chrono::steady_clock::now();
+    if (params.estimate_scale) {
+      MatchResult result = estimate_scale_onto(source, view(dest));
+      result.timings.total_s = detail::seconds_since(start);
+      return result;
+    }
+    const AreaGraph source_graph = segmenter.segment(source);
+    const double segment_source_s = detail::seconds_since(start);
+    MatchResult result = match_graphs(MapView{&source, &source_graph, nullptr}, view(dest));
+    result.timings.segment_source_s = segment_source_s;
+    result.timings.total_s = detail::seconds_since(start);
+    return result;
+  }
 
   /// Segments both grids with `segmenter` and matches them (estimating the source's scale too
   /// with `params.estimate_scale`).
@@ -265,21 +372,22 @@ class Matcher {
     }
     check_graph(source, source_graph, "source");
     check_graph(dest, dest_graph, "destination");
-    return match_graphs(MapView{&source, &source_graph}, MapView{&dest, &dest_graph});
+    return match_graphs(MapView{&source, &source_graph, nullptr}, MapView{&dest, &dest_graph, nullptr});
   }
 
  private:
   /// The factor (≈ T.scale) in [1 − sweep_range, 1 + sweep_range] × T.scale whose rigidly
   /// refined transform the maps agree with most, for the source at candidate scale `scale`
   /// (`graph`: its segmentation at that scale).
-  double sweep_scale(const OccupancyGrid& source, const AreaGraph& graph, const OccupancyGrid& dest,
-                     const AreaGraph& dest_graph, double scale, const Similarity2& T, const MatcherParams& p) const {
+  double sweep_scale(const OccupancyGrid& source, const AreaGraph& graph, const MapView& dest, double scale,
+                     const Similarity2& T, const MatcherParams& p) const {
     if (graph.areas.empty()) return T.scale;
     const OccupancyGrid scaled = rescaled_grid(source, scale);
-    const MapView source_map{&scaled, &graph}, dest_map{&dest, &dest_graph};
-    const detail::MapEdges edges = map_edges(source_map, dest_map);
-    const AreaRaster source_raster = make_area_raster(graph, p.fine_cell_m);
-    const AreaRaster dest_raster = make_area_raster(dest_graph, p.fine_cell_m);
+    const detail::MapData<Descriptors> source_data = map_data(scaled, graph, false);
+    const detail::MapEdges edges = map_edges(source_data, *dest.data);
+    const AreaGraph& dest_graph = *dest.graph;
+    const AreaRaster& source_raster = source_data.fine();
+    const AreaRaster& dest_raster = dest.data->fine();
     const Eigen::Vector2d centre = centroid_of(source_raster);
     RefineParams rigid = p.refinement;
     rigid.estimate_scale = false;
@@ -300,10 +408,43 @@ class Matcher {
     return T.scale * best_factor;
   }
 
-  struct MapView {
-    const OccupancyGrid* grid;
-    const AreaGraph* graph;
-  };
+  static MapView view(const PreparedMap& m) { return MapView{&m.grid_, &m.graph_, &m.data_}; }
+
+  /// The lookups reach this far beyond the edges: every distance they are asked about.
+  double lookup_margin() const {
+    return std::max({params.refinement.gates_m.front(), params.wall_inlier_distance_m, params.candidate_wall_distance_m});
+  }
+
+  /// The key of the data this matcher builds; `normals`: the lookup carries normals (needed by
+  /// the destination's for point-to-line ICP, not by the source's).
+  detail::MapDataKey data_key(bool normals) const {
+    const RefineParams& r = params.refinement;
+    return {params.coarse_cell_m, params.fine_cell_m, r.point_spacing_m, r.lookup_cell_m, lookup_margin(),
+            normals && r.point_to_line ? r.normal_radius_m : 0.0, r.max_points, params.hypotheses.wall_directions};
+  }
+
+  void check_prepared(const PreparedMap& m, const char* which) const {
+    params.validate();
+    if (!(m.key_ == data_key(true))) {
+      throw parameter_error(std::string("Matcher::match: the ") + which + " map was prepared by a matcher with other "
+                            "cell sizes, edge spacing, lookups or wall directions; prepare it with this matcher");
+    }
+  }
+
+  /// What matching builds from one map alone.
+  detail::MapData<Descriptors> map_data(const OccupancyGrid& grid, const AreaGraph& graph, bool normals) const {
+    const RefineParams& r = params.refinement;
+    detail::MapData<Descriptors> d;
+    d.descriptors = features.describe(graph);
+    d.coarse = make_area_raster(graph, params.coarse_cell_m);
+    if (params.fine_cell_m != params.coarse_cell_m) d.fine_own = make_area_raster(graph, params.fine_cell_m);
+    if (params.hypotheses.wall_directions) d.wall_direction = dominant_wall_direction(graph);
+    d.edge_points = detail::free_boundary_points(grid, graph, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
+    d.walls = detail::without_frontiers(grid, d.edge_points);
+    d.lookup = BoundaryLookup(detail::free_boundary_points(grid, graph, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
+                              lookup_margin(), normals && r.point_to_line ? r.normal_radius_m : 0.0);
+    return d;
+  }
 
  public:
   /// The source's scale unknown (match/scale.hpp): the source is segmented with `segmenter` and
@@ -313,10 +454,29 @@ class Matcher {
   /// the estimated ones). `timings.segment_source_s` sums every segmentation of the source.
   MatchResult match_estimating_scale(const OccupancyGrid& source, const OccupancyGrid& dest, const AreaGraph& dest_graph,
                                      AreaGraph* source_graph = nullptr) const {
+    params.validate();
+    check_graph(dest, dest_graph, "destination");
+    const auto start = std::chrono::steady_clock::now();
+    // The destination's data once for every candidate scale.
+    std::optional<detail::MapData<Descriptors>> dest_data;
+    if (!dest_graph.areas.empty()) dest_data = map_data(dest, dest_graph, true);
+    const double prepare_dest_s = detail::seconds_since(start);
+    MatchResult result = estimate_scale_onto(source, MapView{&dest, &dest_graph, dest_data ? &*dest_data : nullptr},
+                                             source_graph);
+    result.timings.prepare_s += prepare_dest_s;
+    result.timings.match_s += prepare_dest_s;
+    result.timings.total_s += prepare_dest_s;
+    return result;
+  }
+
+ private:
+  /// `match_estimating_scale` onto a destination whose data is built (`dest.data` null: it has
+  /// no areas).
+  MatchResult estimate_scale_onto(const OccupancyGrid& source, const MapView& dest, AreaGraph* source_graph = nullptr) const {
     MatcherParams p = params;
     p.estimate_scale = true;
     p.validate();
-    check_graph(dest, dest_graph, "destination");
+    const AreaGraph& dest_graph = *dest.graph;
     const auto start = std::chrono::steady_clock::now();
     double segment_s = 0.0;
     Matcher at_scale = *this;  // matches with the ICP fitting the scale
@@ -326,7 +486,7 @@ class Matcher {
       const auto segment_start = std::chrono::steady_clock::now();
       graph = segmenter.segment(scaled);
       segment_s += detail::seconds_since(segment_start);
-      return at_scale.match_graphs(MapView{&scaled, &graph}, MapView{&dest, &dest_graph});
+      return at_scale.match_graphs(MapView{&scaled, &graph, nullptr}, dest);
     };
     // The best `scale.finalists` candidates by agreement, best first (ties: the smaller scale).
     struct Candidate {
@@ -361,7 +521,7 @@ class Matcher {
       bool have = false;
       for (const Candidate& c : finalists) {
         double scale = c.scale * c.T.scale;
-        if (p.scale.sweep_range > 0.0) scale = c.scale * sweep_scale(source, c.graph, dest, dest_graph, c.scale, c.T, p);
+        if (p.scale.sweep_range > 0.0) scale = c.scale * sweep_scale(source, c.graph, dest, c.scale, c.T, p);
         const double estimate = std::clamp(scale, p.scale.min_scale, p.scale.max_scale);
         AreaGraph final_graph;
         MatchResult r = run_at(estimate, final_graph);
@@ -421,10 +581,20 @@ class Matcher {
     if (source.areas.empty()) return finish("the source map has no areas: " + source.reason);
     if (dest.areas.empty()) return finish("the destination map has no areas: " + dest.reason);
 
-    // Features, costs and mutual pairs. They do not change under reflection: computed once.
+    // What each map gives alone: prepared beforehand, or built now (the destination's lookup
+    // with normals, for point-to-line ICP onto it).
     auto stage = std::chrono::steady_clock::now();
-    const auto source_descriptors = features.describe(source);
-    const auto dest_descriptors = features.describe(dest);
+    std::optional<detail::MapData<Descriptors>> source_own, dest_own;
+    if (!source_map.data) source_own = map_data(*source_map.grid, source, false);
+    if (!dest_map.data) dest_own = map_data(*dest_map.grid, dest, true);
+    const detail::MapData<Descriptors>& source_data = source_map.data ? *source_map.data : *source_own;
+    const detail::MapData<Descriptors>& dest_data = dest_map.data ? *dest_map.data : *dest_own;
+    if (source_own || dest_own) result.timings.prepare_s = detail::seconds_since(stage);
+
+    // Costs and mutual pairs. They do not change under reflection: computed once.
+    stage = std::chrono::steady_clock::now();
+    const auto& source_descriptors = source_data.descriptors;
+    const auto& dest_descriptors = dest_data.descriptors;
     const Eigen::MatrixXd cost = weighted_cost(features.costs(source_descriptors, dest_descriptors), weights.values);
     const std::vector<AreaPair> pairs = mutual_nearest_pairs(cost, params.k);
     result.statistics.mutual_pairs = pairs.size();
@@ -432,13 +602,10 @@ class Matcher {
 
     // Hypotheses on each side of the mirror.
     stage = std::chrono::steady_clock::now();
-    const AreaRaster source_raster = make_area_raster(source, params.coarse_cell_m);
-    const AreaRaster dest_raster = make_area_raster(dest, params.coarse_cell_m);
-    HypothesisInputs inputs{&source, &dest, &source_raster, &dest_raster, 0.0, 0.0};
-    if (params.hypotheses.wall_directions) {
-      inputs.source_wall_direction = dominant_wall_direction(source);
-      inputs.dest_wall_direction = dominant_wall_direction(dest);
-    }
+    const AreaRaster& source_raster = source_data.coarse;
+    const AreaRaster& dest_raster = dest_data.coarse;
+    HypothesisInputs inputs{&source, &dest, &source_raster, &dest_raster, source_data.wall_direction,
+                            dest_data.wall_direction};
     std::vector<Hypothesis> hypotheses;
     for (bool reflected : sides()) {
       for (const AreaPair& pair : pairs) {
@@ -461,15 +628,10 @@ class Matcher {
     result.timings.clustering_s = detail::seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
-    // The finalists' rasters; the coarse ones again when the cell sizes agree.
-    std::optional<AreaRaster> source_fine_own, dest_fine_own;
-    if (params.fine_cell_m != params.coarse_cell_m) {
-      source_fine_own = make_area_raster(source, params.fine_cell_m);
-      dest_fine_own = make_area_raster(dest, params.fine_cell_m);
-    }
-    const AreaRaster& source_fine = source_fine_own ? *source_fine_own : source_raster;
-    const AreaRaster& dest_fine = dest_fine_own ? *dest_fine_own : dest_raster;
-    const detail::MapEdges edges = map_edges(source_map, dest_map);
+    // The finalists' rasters (the coarse ones again when the cell sizes agree).
+    const AreaRaster& source_fine = source_data.fine();
+    const AreaRaster& dest_fine = dest_data.fine();
+    const detail::MapEdges edges = map_edges(source_data, dest_data);
     std::vector<detail::ScoredTransform> finalists;  // best first
     if (params.selection == Selection::largest_cluster) {
       finalists = select_largest_cluster(inputs, pairs, hypotheses, clusters, result);
@@ -660,21 +822,8 @@ class Matcher {
 
   /// The free-space edges of both maps, each as sparse points (what moves) and a dense lookup
   /// (what is landed on), so that scores and evidence can look both ways.
-  detail::MapEdges map_edges(const MapView& source, const MapView& dest) const {
-    const RefineParams& r = params.refinement;
-    const auto max_points = static_cast<std::size_t>(r.max_points);
-    const double margin = std::max({r.gates_m.front(), params.wall_inlier_distance_m, params.candidate_wall_distance_m});
-    detail::MapEdges e;
-    e.source_points = detail::free_boundary_points(*source.grid, *source.graph, r.point_spacing_m, max_points);
-    e.source_walls = detail::without_frontiers(*source.grid, e.source_points);
-    e.dest_walls = detail::without_frontiers(
-        *dest.grid, detail::free_boundary_points(*dest.grid, *dest.graph, r.point_spacing_m, max_points));
-    e.source_lookup = BoundaryLookup(detail::free_boundary_points(*source.grid, *source.graph, 0.5 * r.lookup_cell_m),
-                                     r.lookup_cell_m, margin);
-    // Only the destination's lookup is landed on by ICP: only it needs normals.
-    e.dest_lookup = BoundaryLookup(detail::free_boundary_points(*dest.grid, *dest.graph, 0.5 * r.lookup_cell_m),
-                                   r.lookup_cell_m, margin, r.point_to_line ? r.normal_radius_m : 0.0);
-    return e;
+  static detail::MapEdges map_edges(const detail::MapData<Descriptors>& source, const detail::MapData<Descriptors>& dest) {
+    return detail::MapEdges{source.edge_points, source.walls, dest.walls, source.lookup, dest.lookup};
   }
 
   /// Whether two transforms are clearly different answers: another side of the mirror, a

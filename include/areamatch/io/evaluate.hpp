@@ -104,7 +104,8 @@ inline MatchTimings median_timings(const std::vector<MatchTimings>& runs) {
     return median_of(std::move(v));
   };
   MatchTimings m;
-  for (double MatchTimings::*field : {&MatchTimings::segment_source_s, &MatchTimings::segment_dest_s, &MatchTimings::features_s,
+  for (double MatchTimings::*field : {&MatchTimings::segment_source_s, &MatchTimings::segment_dest_s,
+                                      &MatchTimings::prepare_s, &MatchTimings::features_s,
                                       &MatchTimings::hypotheses_s, &MatchTimings::clustering_s, &MatchTimings::selection_s,
                                       &MatchTimings::match_s, &MatchTimings::total_s}) {
     m.*field = median_field(field);

@@ -127,7 +127,8 @@ inline std::string match_result_json(const MatchResult& r) {
   const MatchTimings& t = r.timings;
   out += ", \"timings\": {\"segment_source_s\": " + json_number(t.segment_source_s) +
          ", \"segment_dest_s\": " + json_number(t.segment_dest_s) + ", \"match_s\": " + json_number(t.match_s) +
-         ", \"total_s\": " + json_number(t.total_s) + ", \"features_s\": " + json_number(t.features_s) +
+         ", \"total_s\": " + json_number(t.total_s) + ", \"prepare_s\": " + json_number(t.prepare_s) +
+         ", \"features_s\": " + json_number(t.features_s) +
          ", \"hypotheses_s\": " + json_number(t.hypotheses_s) + ", \"clustering_s\": " + json_number(t.clustering_s) +
          ", \"selection_s\": " + json_number(t.selection_s) + "}}";
   return out;

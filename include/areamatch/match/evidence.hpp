@@ -61,10 +61,13 @@ namespace detail {
 
 /// Both maps' free-space edges: the source's sparse points to move (ICP, scores), both maps'
 /// sparse walls (edge points without frontiers, `without_frontiers`) and dense lookups to land on.
+/// Views of what each map holds (built once per map, `Matcher::prepare`).
 struct MapEdges {
-  std::vector<Eigen::Vector2d> source_points;
-  std::vector<Eigen::Vector2d> source_walls, dest_walls;
-  BoundaryLookup source_lookup, dest_lookup;
+  const std::vector<Eigen::Vector2d>& source_points;
+  const std::vector<Eigen::Vector2d>& source_walls;
+  const std::vector<Eigen::Vector2d>& dest_walls;
+  const BoundaryLookup& source_lookup;
+  const BoundaryLookup& dest_lookup;
 };
 
 /// Whether a world point is in, or within one raster cell of, a labelled cell of `raster`.

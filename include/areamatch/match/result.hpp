@@ -34,8 +34,11 @@ struct MatchedAreaPair {
 struct MatchTimings {
   double segment_source_s = 0.0;
   double segment_dest_s = 0.0;
-  double features_s = 0.0;     ///< descriptors, cost matrix, mutual pairs
-  double hypotheses_s = 0.0;   ///< rasters, wall directions, hypotheses with their overlap
+  /// What matching builds from each map alone (descriptors, rasters, wall direction, free-space
+  /// edges and lookups); 0 for maps prepared beforehand (`Matcher::prepare`)
+  double prepare_s = 0.0;
+  double features_s = 0.0;     ///< cost matrix, mutual pairs
+  double hypotheses_s = 0.0;   ///< hypotheses with their overlap
   double clustering_s = 0.0;
   double selection_s = 0.0;    ///< verification (or the paper's Σ OP) and refinement
   double match_s = 0.0;        ///< everything after segmentation
