@@ -14,6 +14,7 @@
 
 #include <array>
 #include <map>
+#include <memory>
 #include <set>
 #include <string>
 #include <vector>
@@ -26,6 +27,7 @@ struct JudgedRow {
   ManifestPair pair;
   PairEvaluation row;
   bool right = false;  ///< the transform is within correct_if (pairs of different buildings: never)
+  std::shared_ptr<const MapPairRun> run;  ///< the maps, graphs and result (shared pairs only)
 };
 
 /// Every pair of shared/pairs.json, judged once per process (reflection allowed, the pair's door
@@ -35,8 +37,9 @@ const std::vector<JudgedRow>& shared_pair_rows(const std::string& shared) {
     const Manifest manifest = load_manifest(shared + "/pairs.json");
     std::vector<JudgedRow> out;
     for (const ManifestPair& pair : manifest.pairs) {
-      const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, EvalOptions{});
-      out.push_back({pair, row, row.transform_correct});
+      auto run = std::make_shared<MapPairRun>();
+      const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, EvalOptions{}, run.get());
+      out.push_back({pair, row, row.transform_correct, std::move(run)});
     }
     return out;
   }();
@@ -51,7 +54,7 @@ const std::vector<JudgedRow>& shared_cross_rows(const std::string& shared) {
     const std::vector<ManifestPair> cross = cross_building_pairs(manifest);
     std::vector<JudgedRow> out;
     for (std::size_t i = 0; i < cross.size(); i += 3) {
-      out.push_back({cross[i], evaluate_pair(cross[i], manifest.correct_if, EvalOptions{}), false});
+      out.push_back({cross[i], evaluate_pair(cross[i], manifest.correct_if, EvalOptions{}), false, nullptr});
     }
     return out;
   }();
@@ -82,16 +85,15 @@ TEST_CASE("every non-ambiguous shared pair is matched correctly") {
 TEST_CASE("prepared maps give the same results as their grids on every shared pair") {
   const std::string shared = areamatch_test::shared_dir();
   if (shared.empty()) return;
-  const Manifest manifest = load_manifest(shared + "/pairs.json");
-  for (const ManifestPair& pair : manifest.pairs) {
-    const MapPairOptions options = pair_options(pair, EvalOptions{});
-    const MapPairRun run = match_map_files(pair.source, pair.destination, options);
+  for (const JudgedRow& judged : shared_pair_rows(shared)) {
+    REQUIRE(judged.run);
+    const MapPairRun& run = *judged.run;
     Matcher<> matcher;
-    matcher.params.allow_reflection = options.allow_reflection;
+    matcher.params.allow_reflection = pair_options(judged.pair, EvalOptions{}).allow_reflection;
     const MatchResult prepared =
         matcher.match(matcher.prepare(run.source, run.source_graph), matcher.prepare(run.dest, run.dest_graph));
     const std::string a = match_result_json(prepared), b = match_result_json(run.result);
-    CHECK_MESSAGE(a.substr(0, a.find("\"timings\"")) == b.substr(0, b.find("\"timings\"")), pair.name);
+    CHECK_MESSAGE(a.substr(0, a.find("\"timings\"")) == b.substr(0, b.find("\"timings\"")), judged.pair.name);
   }
 }
 
@@ -202,7 +204,7 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
       const bool to_layout = pair.kind == "sensor_to_layout";
       (to_layout ? layout_pairs : scan_pairs) += 1;
       (to_layout ? layout_ok : scan_ok) += row.correct;
-      rows.push_back({pair, row, row.transform_correct});
+      rows.push_back({pair, row, row.transform_correct, nullptr});
     }
     const PairEvaluation mirrored = evaluate_pair(pair, manifest.correct_if, mirrors);
     if (mirrored.result.ok && mirrored.result.T_dest_source.reflected) {
@@ -225,7 +227,7 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
     REQUIRE_MESSAGE(row.failure.empty(), row.failure);
     cross_accepted += row.result.ok;
     if (row.result.ok) MESSAGE("accepted " << pair.name << ": p_correct " << row.result.p_correct);
-    rows.push_back({pair, row, false});
+    rows.push_back({pair, row, false, nullptr});
   }
   MESSAGE(cross_accepted << " of " << cross.size() << " pairs of different places accepted");
   CHECK(cross_accepted * 100 <= cross.size());  // >= 99 % rejected

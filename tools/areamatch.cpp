@@ -631,10 +631,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     in_sample_total.add(r.sample.correct, r.different_buildings, rule.accepts(r, areamatch::p_correct(r.sample.features, fitted)));
     cv_model_half.add(r.sample.correct, r.different_buildings, model_half.accepts(r, predicted[i]));
     gate_only.add(r.sample.correct, r.different_buildings, gate_alone.accepts(r, 0.0));
-    per_building[static_cast<std::size_t>(r.source_building)].add(r.sample.correct, r.different_buildings, accepted);
-    if (r.dest_building != r.source_building) {
-      per_building[static_cast<std::size_t>(r.dest_building)].add(r.sample.correct, r.different_buildings, accepted);
-    }
+    DecisionCounts::add_per_building(per_building, r, accepted);
   }
   std::cout << rows.size() << " rows, " << buildings.size() << " buildings; rule: agreement >= " << format_double(gate)
             << " or p_correct >= " << format_double(base.accept_p_correct) << "\n\n"
@@ -689,10 +686,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const CalibrationRow& r = rows[i];
       nested_total.add(r.sample.correct, r.different_buildings, accepted[i]);
-      nested_per_building[static_cast<std::size_t>(r.source_building)].add(r.sample.correct, r.different_buildings, accepted[i]);
-      if (r.dest_building != r.source_building) {
-        nested_per_building[static_cast<std::size_t>(r.dest_building)].add(r.sample.correct, r.different_buildings, accepted[i]);
-      }
+      DecisionCounts::add_per_building(nested_per_building, r, accepted[i]);
     }
     std::map<std::pair<double, double>, int> folds;
     for (const Rule& fold_rule : chosen) ++folds[{fold_rule.min_agreement, fold_rule.accept_p}];

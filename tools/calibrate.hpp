@@ -29,6 +29,10 @@ struct CalibrationRow {
   double agreement = 0.0;  ///< MatchEvidence::agreement, for the rule's agreement gate
   areamatch::DecisionSample sample;
   int source_building = -1, dest_building = -1;  ///< filled by `assign_buildings`
+  /// The two buildings, as `areamatch::leave_one_building_out` takes them.
+  std::array<std::size_t, 2> buildings() const {
+    return {static_cast<std::size_t>(source_building), static_cast<std::size_t>(dest_building)};
+  }
 };
 
 /// The fields of one CSV line (RFC 4180 quoting, as `detail::csv_field` writes it).
@@ -154,6 +158,13 @@ struct DecisionCounts {
       wrong_same_accepted += accepted;
     }
   }
+  /// Counts a row under its buildings (under both for a pair of two).
+  static void add_per_building(std::vector<DecisionCounts>& per_building, const CalibrationRow& r, bool accepted) {
+    per_building[static_cast<std::size_t>(r.source_building)].add(r.sample.correct, r.different_buildings, accepted);
+    if (r.dest_building != r.source_building) {
+      per_building[static_cast<std::size_t>(r.dest_building)].add(r.sample.correct, r.different_buildings, accepted);
+    }
+  }
   void add(const DecisionCounts& o) {
     right += o.right, right_rejected += o.right_rejected, wrong_same += o.wrong_same;
     wrong_same_accepted += o.wrong_same_accepted, different += o.different, different_accepted += o.different_accepted;
@@ -167,7 +178,7 @@ inline std::vector<double> leave_one_building_out(const std::vector<CalibrationR
   std::vector<std::array<std::size_t, 2>> buildings;
   for (const auto& r : rows) {
     samples.push_back(r.sample);
-    buildings.push_back({static_cast<std::size_t>(r.source_building), static_cast<std::size_t>(r.dest_building)});
+    buildings.push_back(r.buildings());
   }
   return areamatch::leave_one_building_out(samples, buildings, l2, base);
 }
@@ -245,12 +256,13 @@ inline std::vector<char> nested_rule_cv(const std::vector<CalibrationRow>& rows,
     std::vector<std::array<std::size_t, 2>> groups;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& r = rows[i];
-      if (static_cast<std::size_t>(r.source_building) == held || static_cast<std::size_t>(r.dest_building) == held) {
+      const std::array<std::size_t, 2> b = r.buildings();
+      if (b[0] == held || b[1] == held) {
         test.push_back(i);
       } else {
         train.push_back(i);
         samples.push_back(r.sample);
-        groups.push_back({static_cast<std::size_t>(r.source_building), static_cast<std::size_t>(r.dest_building)});
+        groups.push_back(b);
       }
     }
     if (test.empty()) continue;
