@@ -6,6 +6,8 @@ include(CMakeFindDependencyMacro)
 # Boost >= 1.81: Boost.Polygon's Voronoi and Boost.Geometry. Header-only parts only.
 find_package(Boost 1.81 REQUIRED CONFIG COMPONENTS headers)
 find_package(Eigen3 3.3 REQUIRED NO_MODULE)
+# merge_maps can match pairs on several threads (MergeParams::threads).
+find_package(Threads REQUIRED)
 
 if(AREAMATCH_WITH_IO)
   find_package(yaml-cpp REQUIRED CONFIG)

@@ -5,6 +5,7 @@
 #include <areamatch/synthetic.hpp>
 
 #include <cstdint>
+#include <vector>
 
 namespace areamatch_test {
 
@@ -34,6 +35,42 @@ inline SyntheticCase synthetic_case(std::uint64_t seed) {
   c.building = areamatch::generate_building(b, seed);
   c.robot_params = r;
   c.robot = areamatch::make_robot_map(c.building, r, seed + 1000);
+  return c;
+}
+
+}  // namespace areamatch_test
+
+namespace areamatch_test {
+
+/// A building with `count` robot maps of it, each exploring 30–60 % of the rooms (and the
+/// corridors), turned by any angle and shifted at random; with `mirror_one`, map 1 is a mirror
+/// image. `truth[i]` is map i's world → map 0's world (map 0 is the reference).
+struct MergeCase {
+  areamatch::SyntheticBuilding building;
+  std::vector<areamatch::RobotMap> robots;
+  std::vector<areamatch::Similarity2> truth;
+};
+
+inline MergeCase merge_case(std::uint64_t seed, std::size_t count, bool mirror_one) {
+  areamatch::detail::Random random(seed * 104729 + 3);
+  areamatch::BuildingParams b;
+  b.width_m = random.uniform(24.0, 40.0);
+  b.height_m = random.uniform(16.0, 28.0);
+  MergeCase c;
+  c.building = areamatch::generate_building(b, seed);
+  for (std::size_t i = 0; i < count; ++i) {
+    areamatch::RobotMapParams r;
+    r.rotation_rad = random.uniform(-areamatch::pi, areamatch::pi);
+    r.translation_m = {random.uniform(-5.0, 5.0), random.uniform(-5.0, 5.0)};
+    r.mirror = mirror_one && i == 1;
+    r.wall_noise_m = random.uniform(0.0, 0.02);
+    r.max_clutter_per_room = random.integer(0, 2);
+    r.explored_fraction = random.uniform(0.3, 0.6);
+    r.speckle_per_m2 = random.uniform(0.0, 0.02);
+    c.robots.push_back(areamatch::make_robot_map(c.building, r, seed * 1000 + i));
+  }
+  const areamatch::Similarity2 layout_from_reference = c.robots[0].T_dest_source;
+  for (const auto& robot : c.robots) c.truth.push_back(layout_from_reference.inverse() * robot.T_dest_source);
   return c;
 }
 

@@ -11,6 +11,8 @@
 #include <cstdio>
 #include <string>
 #include <sys/wait.h>
+#include <utility>
+#include <vector>
 
 namespace {
 
@@ -386,4 +388,64 @@ TEST_CASE("the same pair matched by 20 processes gives bit-identical JSON (timin
   const std::string expected = without_timings(first.out);
   CHECK(expected.find("\"pixel_transform\"") != std::string::npos);
   for (int i = 1, n = areamatch_test::quick_tests() ? 3 : 20; i < n; ++i) CHECK(without_timings(run(command, false).out) == expected);
+  // The two maps loaded, segmented and prepared side by side or one after the other: the same.
+  for (const char* threads : {" --threads 1", " --threads 2", " --threads 0"}) {
+    CHECK(without_timings(run(command + threads, false).out) == expected);
+  }
+}
+
+TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that info reads back; bad input") {
+  const std::string dir = areamatch_test::temp_dir() + "/merge";
+  REQUIRE(run("generate " + dir + "/a --seed 7 --width 18 --height 13 --rotation 60").status == 0);
+  REQUIRE(run("generate " + dir + "/b --seed 8 --width 18 --height 13").status == 0);
+  const std::string maps = dir + "/a/layout.yaml " + dir + "/a/robot.yaml";
+  const Run json = run("merge " + maps + " --json --out " + dir + "/merged.yaml --png " + dir + "/merged.png", false);
+  INFO(json.out);
+  CHECK(json.status == 0);
+  CHECK(json.out.rfind("{\"ok\": true, \"reference\": \"" + dir + "/a/layout.yaml\"", 0) == 0);
+  CHECK(json.out.find('\n') == json.out.size() - 1);
+  for (const char* key : {"\"placed\": true", "\"pixel_transform\"", "\"rotation_deg\"", "\"translation_m\"", "\"scale\"",
+                          "\"reflected\"", "\"residual_m\"", "\"edges\"", "\"from\"", "\"to\"", "\"p_correct\"", "\"used\": true",
+                          "\"timings\"", "\"prepare_s\"", "\"merge_s\""}) {
+    CHECK_MESSAGE(json.out.find(key) != std::string::npos, key);
+  }
+  const areamatch::OccupancyGrid merged = areamatch::load_map(dir + "/merged.yaml");
+  CHECK(json.out.find("\"merged\": {\"width\": " + std::to_string(merged.width()) + ", \"height\": " +
+                      std::to_string(merged.height())) != std::string::npos);
+  const Run info = run("info " + dir + "/merged.yaml");
+  CHECK(info.status == 0);
+  CHECK(info.out.find(std::to_string(merged.width()) + " x " + std::to_string(merged.height())) != std::string::npos);
+  CHECK(areamatch::detail::read_file_bytes(dir + "/merged.png").size() > 0);
+  // Saved and loaded again: the same grid (what map_server would load).
+  areamatch::save_map(merged, dir + "/again.pgm");
+  CHECK(areamatch::load_map(dir + "/again.yaml") == merged);
+
+  const Run one_thread = run("merge " + maps + " --json --threads 1", false);
+  CHECK(one_thread.out.substr(0, one_thread.out.find("\"timings\"")) == json.out.substr(0, json.out.find("\"timings\"")));
+  const Run text = run("merge " + maps + " --reference " + dir + "/a/robot.yaml");
+  CHECK(text.status == 0);
+  CHECK(text.out.find("placed 2 of 2 maps in the frame of " + dir + "/a/robot.yaml") != std::string::npos);
+
+  // Maps of different buildings only: listed as not placed, exit 1.
+  const Run strangers = run("merge " + dir + "/a/layout.yaml " + dir + "/b/robot.yaml");
+  CHECK(strangers.status == 1);
+  CHECK(strangers.out.find(dir + "/b/robot.yaml not placed: no accepted match") != std::string::npos);
+  // An all-unknown map: not placed, with the reason.
+  areamatch::save_map(areamatch::OccupancyGrid(120, 90, 0.05), dir + "/unknown.pgm");
+  const Run unknown = run("merge " + maps + " " + dir + "/unknown.yaml");
+  CHECK(unknown.status == 1);
+  CHECK(unknown.out.find("unknown.yaml not placed") != std::string::npos);
+  CHECK(unknown.out.find("no areas") != std::string::npos);
+
+  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+           {dir + "/a/layout.yaml", "at least two maps"},
+           {maps + " " + dir + "/a/../a/robot.yaml", "is given twice"},
+           {maps + " --reference " + dir + "/b/robot.yaml", "not one of the maps"},
+           {maps + " --wall-share 2", "--wall-share must be in (0, 1]"},
+           {maps + " --out " + dir + "/merged.pgm", "must name a .yaml file"},
+           {maps + " " + dir + "/missing.yaml", "missing.yaml"}}) {
+    const Run bad = run("merge " + arguments);
+    CHECK_MESSAGE(bad.status == 2, arguments);
+    CHECK_MESSAGE(bad.out.find(message) != std::string::npos, bad.out);
+  }
 }

@@ -3,6 +3,7 @@
 //   areamatch info MAP            size, resolution, origin and cell fractions of a map
 //   areamatch segment MAP         the map's Area Graph, with pictures, labels and JSON
 //   areamatch match SOURCE DEST   the transform between two maps, with a picture and JSON
+//   areamatch merge MAP MAP...    several maps in one frame, fused into one map
 //   areamatch eval MANIFEST       every pair of a manifest, scored against its ground truth
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
 //
@@ -15,8 +16,10 @@
 #include <areamatch/io.hpp>
 #include <areamatch/io/eval_report.hpp>
 #include <areamatch/io/match_files.hpp>
+#include <areamatch/merge.hpp>
 
 #include <algorithm>
+#include <chrono>
 #include <cctype>
 #include <cmath>
 #include <cstdio>
@@ -362,6 +365,8 @@ const char* kMatchHelp =
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A       reject when the maps agree less than A under the best transform: not the\n"
     "                          same building (default 0.835; 0 always answers; see docs/evaluation.md)\n"
+    "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
+    "                          per core); the same result for any N\n"
     "  --json                  print exactly one JSON object on stdout\n"
     "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
     "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n"
@@ -372,7 +377,7 @@ const char* kMatchHelp =
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"allow-reflection", "paper", "json", "estimate-scale", "help"},
                   {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
-                   "min-score", "min-agreement", "min-p-correct", "png", "svg", "labels"});
+                   "min-score", "min-agreement", "min-p-correct", "png", "svg", "labels", "threads"});
   if (args.flag("help")) {
     std::cout << kMatchHelp;
     return 0;
@@ -395,6 +400,7 @@ int run_match(const std::vector<std::string>& tokens) {
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
+  options.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
 
   const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
   const auto& [source, dest, source_graph, dest_graph, result] = run;
@@ -436,6 +442,129 @@ int run_match(const std::vector<std::string>& tokens) {
     return 1;
   }
   return 0;
+}
+
+// --------------------------------------------------------------------------------------- merge
+
+const char* kMergeHelp =
+    "usage: areamatch merge MAP MAP... [options]\n"
+    "Places several maps of one building (robot maps, scans, a floor plan) in one frame: every pair is\n"
+    "matched, the accepted matches are fitted together (least squares, so loops of matches agree), a\n"
+    "match the others contradict is dropped, and the maps are fused into one occupancy grid in the\n"
+    "reference map's world frame. A map that cannot be placed is listed with the reason.\n"
+    "Exit status: 0 every map placed, 1 some not placed (listed), 2 bad input or usage.\n"
+    "Options:\n"
+    "  --reference MAP      the map whose frame is the merged frame (default: the first)\n"
+    "  --out MERGED.yaml    write the merged map as a ROS map_server YAML + PGM beside it\n"
+    "  --png OUT.png        picture: the merged map with each map's walls in its own colour\n"
+    "  --json               print exactly one JSON object on stdout\n"
+    "  --allow-reflection   a map may be a mirror image of the others\n"
+    "  --door-width M       door width for every map, metres (default 1.2, see segment --help)\n"
+    "  --resolution M       metres per cell of the merged map (default: the finest map's)\n"
+    "  --wall-share S       a merged cell is occupied when at least this share of the maps that saw it\n"
+    "                       saw a wall (default 0.5)\n"
+    "  --max-residual M     drop a match whose areas land more than M metres apart under the fitted\n"
+    "                       poses (default 1.0)\n"
+    "  --until-connected    match a pair only while its maps are not yet joined (fewer matches, no loop\n"
+    "                       checks; default: every pair)\n"
+    "  --threads N          match N pairs at once (default 2; 0: one per core); same results for any N\n"
+    "  --min-agreement A    accept a match when the maps agree at least A (default 0.835)\n"
+    "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
+    "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
+
+int run_merge(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"json", "allow-reflection", "until-connected", "help"},
+                  {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
+                   "min-p-correct", "threads"});
+  if (args.flag("help")) {
+    std::cout << kMergeHelp;
+    return 0;
+  }
+  const std::vector<std::string>& paths = args.positional();
+  if (paths.size() < 2) throw UsageError("expected at least two maps: MAP MAP...");
+  namespace fs = std::filesystem;
+  auto same_file = [](const std::string& a, const std::string& b) {
+    std::error_code error;
+    return fs::equivalent(a, b, error) || fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+  };
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (same_file(paths[i], paths[j])) throw UsageError("map '" + paths[i] + "' is given twice (as '" + paths[j] + "')");
+    }
+  }
+  areamatch::MergeParams merge_params;
+  merge_params.names = paths;
+  if (const auto reference = args.text("reference")) {
+    const auto it = std::find_if(paths.begin(), paths.end(), [&](const std::string& p) { return same_file(p, *reference); });
+    if (it == paths.end()) throw UsageError("--reference '" + *reference + "' is not one of the maps given");
+    merge_params.reference = static_cast<std::size_t>(it - paths.begin());
+  }
+  if (const auto r = args.number("resolution", /*positive=*/true)) merge_params.fuse.resolution = *r;
+  if (const auto share = args.number("wall-share", true)) {
+    if (*share > 1.0) throw UsageError("--wall-share must be in (0, 1], got " + format_double(*share));
+    merge_params.fuse.wall_share = *share;
+  }
+  if (const auto residual = args.number("max-residual", true)) merge_params.max_residual_m = *residual;
+  if (args.flag("until-connected")) merge_params.strategy = areamatch::MergeStrategy::until_connected;
+  merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
+  areamatch::Matcher<> matcher;
+  if (const auto door = args.number("door-width", true)) matcher.segmenter.params.with_door_width(*door);
+  matcher.params.allow_reflection = args.flag("allow-reflection");
+  if (const auto a = args.number("min-agreement", false, true)) matcher.params.min_agreement = *a;
+  if (const auto p = args.number("min-p-correct", false, true)) matcher.params.decision.min_p_correct = *p;
+
+  using clock = std::chrono::steady_clock;
+  const auto start = clock::now();
+  // Each map loaded and prepared on its own, `--threads` at a time (errors: the first map's).
+  std::vector<areamatch::OccupancyGrid> grids(paths.size());
+  areamatch::detail::for_each_index(paths.size(), merge_params.threads, [&](std::size_t i) { grids[i] = areamatch::load_map(paths[i]); });
+  const auto loaded = clock::now();
+  std::vector<areamatch::Matcher<>::PreparedMap> maps(paths.size());
+  areamatch::detail::for_each_index(paths.size(), merge_params.threads, [&](std::size_t i) { maps[i] = matcher.prepare(grids[i]); });
+  const auto prepared = clock::now();
+  const areamatch::MergeResult result = areamatch::merge_maps(matcher, maps, merge_params);
+  const auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+
+  std::vector<const areamatch::OccupancyGrid*> grid_pointers;
+  for (const auto& map : maps) grid_pointers.push_back(&map.grid());
+  if (const auto out = args.text("out")) {
+    if (result.merged.empty()) throw UsageError("--out: no merged map was built");
+    const std::string ext = fs::path(*out).extension().string();
+    if (ext != ".yaml" && ext != ".yml") throw UsageError("--out must name a .yaml file (the PGM is written beside it), got '" + *out + "'");
+    areamatch::save_map(result.merged, fs::path(*out).replace_extension(".pgm").string());
+  }
+  if (const auto png = args.text("png")) areamatch::write_png(*png, areamatch::render_merge(result, grid_pointers));
+  const double total_s = seconds(start, clock::now());
+
+  if (args.flag("json")) {
+    std::cout << areamatch::merge_result_json(result, paths, {{"load_s", seconds(start, loaded)}, {"prepare_s", seconds(loaded, prepared)},
+                                                              {"total_s", total_s}})
+              << "\n";
+  } else {
+    std::size_t placed = 0, used = 0, accepted = 0;
+    for (const auto& m : result.maps) placed += m.placed;
+    for (const auto& e : result.edges) used += e.used, accepted += e.match.ok;
+    std::cout << "placed " << placed << " of " << paths.size() << " maps in the frame of " << paths[result.reference] << " ("
+              << result.edges.size() << " matches, " << accepted << " accepted, " << used << " used), "
+              << format_fixed(1000.0 * total_s, 0) << " ms (prepare " << format_fixed(1000.0 * seconds(loaded, prepared), 0)
+              << ", match " << format_fixed(1000.0 * result.timings.matching_s, 0) << ", fuse "
+              << format_fixed(1000.0 * result.timings.fuse_s, 0) << ")\n";
+    for (std::size_t i = 0; i < paths.size(); ++i) {
+      const auto& m = result.maps[i];
+      if (!m.placed) continue;
+      const auto& T = m.T_reference_map;
+      std::cout << "  " << paths[i] << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2) << " deg, translation ("
+                << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3) << ") m"
+                << (T.reflected ? ", reflected" : "") << ", residual " << format_fixed(m.residual_m, 3) << " m\n";
+    }
+    for (const auto& e : result.edges) {
+      if (e.match.ok && !e.used) std::cout << "  dropped " << paths[e.source] << " -> " << paths[e.dest] << ": " << e.note << "\n";
+    }
+  }
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    if (!result.maps[i].placed) std::cerr << "areamatch merge: " << paths[i] << " not placed: " << result.maps[i].reason << "\n";
+  }
+  return result.ok ? 0 : 1;
 }
 
 // ---------------------------------------------------------------------------------------- eval
@@ -713,6 +842,7 @@ const char* kMainHelp =
     "  info MAP          size, resolution, origin and free/occupied/unknown fractions of a map\n"
     "  segment MAP       split a map into areas and passages (its Area Graph), with pictures\n"
     "  match SOURCE DEST find the transform between two maps of one building\n"
+    "  merge MAP MAP...  place several maps of one building in one frame and fuse them into one map\n"
     "  eval MANIFEST     match every pair of a manifest and score it against its ground truth\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
     "  calibrate CSV...  fit the accept/reject decision on eval results, cross-validated by building\n"
@@ -728,7 +858,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}, {"eval", run_eval}, {"calibrate", run_calibrate}};
+      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

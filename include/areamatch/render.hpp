@@ -7,6 +7,7 @@
 #include "grid.hpp"
 #include "image.hpp"
 #include "match/result.hpp"
+#include "merge.hpp"
 #include "segment/skeleton.hpp"
 #include "transform.hpp"
 
@@ -237,6 +238,19 @@ inline RgbImage downscaled(const RgbImage& image, int factor) {
     }
   }
   return out;
+}
+
+/// The picture `areamatch merge --png` writes: the merged map with each placed map's walls in its
+/// own colour (`area_color` of its index). `maps` in the order given to `merge_maps`.
+inline RgbImage render_merge(const MergeResult& result, const std::vector<const OccupancyGrid*>& maps,
+                             const MapColors& colors = {}) {
+  RgbImage image = render_grid(result.merged, colors);
+  for (std::size_t m = 0; m < maps.size() && m < result.maps.size(); ++m) {
+    if (result.maps[m].placed) {
+      draw_source_walls(image, result.merged, *maps[m], result.maps[m].T_reference_map, area_color(static_cast<int>(m)));
+    }
+  }
+  return image;
 }
 
 }  // namespace areamatch

@@ -8,8 +8,11 @@
 #include "../area_graph.hpp"
 #include "../detail/format.hpp"
 #include "../match/result.hpp"
+#include "../merge.hpp"
 
 #include <string>
+#include <utility>
+#include <vector>
 
 namespace areamatch {
 namespace detail {
@@ -131,6 +134,58 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"features_s\": " + json_number(t.features_s) +
          ", \"hypotheses_s\": " + json_number(t.hypotheses_s) + ", \"clustering_s\": " + json_number(t.clustering_s) +
          ", \"selection_s\": " + json_number(t.selection_s) + "}}";
+  return out;
+}
+
+namespace detail {
+inline std::string json_pixel_transform(const PixelTransform& m) {
+  return "[[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) + "], [" +
+         json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
+}
+}  // namespace detail
+
+/// A merge result as one JSON object on one line (what `areamatch merge --json` prints): ok, the
+/// reference, per map (in the order given) whether it was placed, why not, its transform to the
+/// reference (`pixel_transform`: its pixels → the reference's pixels, as `areamatch match`), per
+/// edge the two maps, p_correct, agreement, whether the fit used it and why not, the residual; and
+/// the timings (seconds), `extra_timings` first. `names` name the maps (e.g. their paths).
+inline std::string merge_result_json(const MergeResult& r, const std::vector<std::string>& names,
+                                     const std::vector<std::pair<std::string, double>>& extra_timings = {}) {
+  using detail::json_number;
+  using detail::json_quote;
+  auto name = [&](std::size_t i) { return json_quote(i < names.size() ? names[i] : "map " + std::to_string(i)); };
+  std::string out = "{\"ok\": " + std::string(r.ok ? "true" : "false") + ", \"reference\": " + name(r.reference) + ", \"maps\": [";
+  for (std::size_t i = 0; i < r.maps.size(); ++i) {
+    const MergedMap& m = r.maps[i];
+    out += std::string(i ? ", " : "") + "{\"path\": " + name(i) + ", \"placed\": " + (m.placed ? "true" : "false");
+    if (!m.placed) {
+      out += ", \"reason\": " + json_quote(m.reason) + "}";
+      continue;
+    }
+    const Similarity2& T = m.T_reference_map;
+    out += ", \"pixel_transform\": " + detail::json_pixel_transform(m.pixel_transform) +
+           ", \"rotation_deg\": " + json_number(T.rotation * 180.0 / pi) + ", \"translation_m\": [" +
+           json_number(T.translation.x()) + ", " + json_number(T.translation.y()) + "], \"scale\": " + json_number(T.scale) +
+           ", \"reflected\": " + (T.reflected ? "true" : "false") + ", \"residual_m\": " + json_number(m.residual_m) + "}";
+  }
+  out += "], \"edges\": [";
+  for (std::size_t i = 0; i < r.edges.size(); ++i) {
+    const MergeEdge& e = r.edges[i];
+    out += std::string(i ? ", " : "") + "{\"from\": " + name(e.source) + ", \"to\": " + name(e.dest) +
+           ", \"ok\": " + (e.match.ok ? "true" : "false") + ", \"p_correct\": " + json_number(e.match.p_correct) +
+           ", \"agreement\": " + json_number(e.match.evidence.agreement) + ", \"used\": " + (e.used ? "true" : "false") +
+           ", \"residual_m\": " + json_number(e.residual_m);
+    if (!e.used) out += ", \"note\": " + json_quote(e.note);
+    out += "}";
+  }
+  out += "], \"merged\": {\"width\": " + std::to_string(r.merged.width()) + ", \"height\": " + std::to_string(r.merged.height()) +
+         ", \"resolution\": " + json_number(r.merged.empty() ? 0.0 : r.merged.resolution()) + ", \"origin\": [" +
+         json_number(r.merged.origin().x) + ", " + json_number(r.merged.origin().y) + ", " + json_number(r.merged.origin().yaw) + "]}";
+  out += ", \"timings\": {";
+  for (const auto& [key, seconds] : extra_timings) out += json_quote(key) + ": " + json_number(seconds) + ", ";
+  const MergeTimings& t = r.timings;
+  out += "\"matching_s\": " + json_number(t.matching_s) + ", \"fit_s\": " + json_number(t.fit_s) +
+         ", \"fuse_s\": " + json_number(t.fuse_s) + ", \"merge_s\": " + json_number(t.total_s) + "}}";
   return out;
 }
 

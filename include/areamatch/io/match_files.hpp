@@ -11,6 +11,7 @@
 /// \endcode
 
 #include "../io.hpp"
+#include "../detail/parallel.hpp"
 #include "../matcher.hpp"
 #include "../segment/voronoi_segmenter.hpp"
 
@@ -34,6 +35,9 @@ struct MapPairOptions {
   std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
   std::optional<double> min_p_correct;        ///< reject below this p_correct (match/decision.hpp)
   bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
+  /// Load and segment the two maps side by side on this many threads (and build their match data
+  /// so: `MatcherParams::threads`); the same result for any count.
+  unsigned threads = 1;
 };
 
 /// Everything one end-to-end run produced: the maps, their Area Graphs and the match, with
@@ -58,6 +62,7 @@ inline VoronoiSegmenter segmenter_with_door(const std::optional<double>& door_wi
 template <class M>
 MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRun& run) {
   matcher.params.allow_reflection = options.allow_reflection;
+  matcher.params.threads = options.threads;
   if (options.k) matcher.params.k = *options.k;
   if (options.min_score) matcher.params.min_score = *options.min_score;
   if (options.min_agreement) matcher.params.min_agreement = *options.min_agreement;
@@ -77,26 +82,32 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRu
 inline MapPairRun match_map_files(const std::string& source_path, const std::string& dest_path,
                                   const MapPairOptions& options = {}) {
   using clock = std::chrono::steady_clock;
+  using seconds = std::chrono::duration<double>;
   const auto start = clock::now();
   MapPairRun run;
-  run.source = load_map(source_path, options.source_load);
-  run.dest = load_map(dest_path, options.dest_load);
-  const auto source_start = clock::now();
-  // With estimate_scale the source is segmented at each candidate scale, inside the match.
-  if (!options.estimate_scale) run.source_graph = detail::segmenter_with_door(options.source_door_width_m).segment(run.source);
-  const auto dest_start = clock::now();
-  run.dest_graph = detail::segmenter_with_door(options.dest_door_width_m).segment(run.dest);
+  // Each map loaded and segmented on its own (side by side with `threads` ≥ 2). With
+  // estimate_scale the source is segmented at each candidate scale, inside the match.
+  double segment_s[2] = {0.0, 0.0};
+  detail::for_each_index(2, options.threads, [&](std::size_t i) {
+    const bool source = i == 0;
+    OccupancyGrid& grid = source ? run.source : run.dest;
+    grid = load_map(source ? source_path : dest_path, source ? options.source_load : options.dest_load);
+    if (source && options.estimate_scale) return;
+    const auto segment_start = clock::now();
+    (source ? run.source_graph : run.dest_graph) =
+        detail::segmenter_with_door(source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
+    segment_s[i] = seconds(clock::now() - segment_start).count();
+  });
   const auto match_start = clock::now();
   run.result = options.paper ? detail::configured_match(PaperMatcher{}, options, run)
                              : detail::configured_match(Matcher<>{}, options, run);
   const auto end = clock::now();
-  using seconds = std::chrono::duration<double>;
   MatchTimings& t = run.result.timings;
-  t.segment_dest_s = seconds(match_start - dest_start).count();
+  t.segment_dest_s = segment_s[1];
   if (options.estimate_scale) {
     t.match_s = seconds(end - match_start).count() - t.segment_source_s;  // segment_source_s from the match
   } else {
-    t.segment_source_s = seconds(dest_start - source_start).count();
+    t.segment_source_s = segment_s[0];
     t.match_s = seconds(end - match_start).count();
   }
   t.total_s = seconds(end - start).count();
