@@ -1,7 +1,9 @@
 // Merging speed (merge_maps on maps prepared beforehand: every pair matched, the poses fitted,
 // the merged map fused), and how it grows with the number of maps:
 //   merge/synthetic/<N>  N robot maps of one generated building (tests/synthetic_cases.hpp's
-//                        merge_case: 30-60 % of the rooms each, one mirrored, allow_reflection)
+//                        merge_case: 30-60 % of the rooms each, one mirrored, allow_reflection);
+//                        the same building for every N, the N maps the first N of one sequence
+//   merge/synthetic/15/threads:2  the same, pairs matched on two threads (MergeParams::threads)
 //   merge/F5             the 14 hand-held scans of ../shared/handheld and the F5 layout (when
 //                        present), the layout as reference, door width 1.0 m
 // Counters: matching_ms, fit_ms, fuse_ms (per merge) and prepare_ms (all N preparations, once:
@@ -25,7 +27,8 @@ namespace {
 
 using Prepared = areamatch::Matcher<>::PreparedMap;
 
-void run_merge(benchmark::State& state, const areamatch::Matcher<>& matcher, const std::vector<areamatch::OccupancyGrid>& grids) {
+void run_merge(benchmark::State& state, const areamatch::Matcher<>& matcher, const std::vector<areamatch::OccupancyGrid>& grids,
+               unsigned threads = 1) {
   const auto start = std::chrono::steady_clock::now();
   std::vector<Prepared> maps;
   for (const auto& grid : grids) maps.push_back(matcher.prepare(grid));
@@ -33,7 +36,9 @@ void run_merge(benchmark::State& state, const areamatch::Matcher<>& matcher, con
   areamatch::MergeTimings sum;
   std::size_t placed = 0;
   for (auto _ : state) {
-    const areamatch::MergeResult result = areamatch::merge_maps(matcher, maps);
+    areamatch::MergeParams params;
+    params.threads = threads;
+    const areamatch::MergeResult result = areamatch::merge_maps(matcher, maps, params);
     benchmark::DoNotOptimize(result.merged.cells().data());
     sum.matching_s += result.timings.matching_s;
     sum.fit_s += result.timings.fit_s;
@@ -60,14 +65,15 @@ std::string shared_dir() {
 }  // namespace
 
 int main(int argc, char** argv) {
-  for (std::size_t n : {2, 5, 10, 15}) {
-    benchmark::RegisterBenchmark(("merge/synthetic/" + std::to_string(n)).c_str(), [n](benchmark::State& state) {
-      const auto c = areamatch_test::merge_case(500 + n, n, /*mirror_one=*/true);
+  for (const auto& [n, threads] : {std::pair<std::size_t, unsigned>{2, 1}, {5, 1}, {10, 1}, {15, 1}, {15, 2}}) {
+    const std::string name = "merge/synthetic/" + std::to_string(n) + (threads > 1 ? "/threads:" + std::to_string(threads) : "");
+    benchmark::RegisterBenchmark(name.c_str(), [n = n, threads = threads](benchmark::State& state) {
+      const auto c = areamatch_test::merge_case(500, n, /*mirror_one=*/true);
       std::vector<areamatch::OccupancyGrid> grids;
       for (const auto& robot : c.robots) grids.push_back(robot.grid);
       areamatch::Matcher<> matcher;
       matcher.params.allow_reflection = true;
-      run_merge(state, matcher, grids);
+      run_merge(state, matcher, grids, threads);
     })->Unit(benchmark::kMillisecond)->UseRealTime();
   }
   if (const std::string dir = shared_dir(); !dir.empty()) {

@@ -15,11 +15,12 @@ def main():
         return 2
     data = json.load(open(sys.argv[1]))
     rows = {}
+    repeated = any(b.get("run_type") == "aggregate" for b in data["benchmarks"])
     for b in data["benchmarks"]:
-        if b.get("run_type") == "aggregate" and b.get("aggregate_name") != "median":
+        if repeated and b.get("aggregate_name") != "median":
             continue
         name = b.get("run_name", b["name"])
-        if not name.startswith("merge/synthetic/"):
+        if not name.startswith("merge/synthetic/") or "threads" in name:
             if name.startswith("merge/"):
                 print("%-20s %8.1f ms (prepare %.0f ms, matching %.0f, fit %.1f, fuse %.0f)" % (
                     name, b["real_time"], b["prepare_ms"], b["matching_ms"], b["fit_ms"], b["fuse_ms"]))

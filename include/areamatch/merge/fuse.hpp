@@ -59,6 +59,24 @@ inline std::array<Eigen::Vector2d, 4> grid_corners(const OccupancyGrid& grid) {
 
 namespace detail {
 
+/// The world corners of the box of `grid`'s known (free or occupied) cells; the whole image's
+/// when none is known. Cells outside it vote for nothing, so fusion reads only inside it (a
+/// hand-held scan is mostly unknown margin).
+inline std::array<Eigen::Vector2d, 4> known_corners(const OccupancyGrid& grid) {
+  int col0 = grid.width(), col1 = -1, row0 = grid.height(), row1 = -1;
+  for (int row = 0; row < grid.height(); ++row) {
+    for (int col = 0; col < grid.width(); ++col) {
+      if (grid.at(col, row) == CellState::unknown) continue;
+      col0 = std::min(col0, col), col1 = std::max(col1, col);
+      row0 = std::min(row0, row), row1 = std::max(row1, row);
+    }
+  }
+  if (col1 < 0) return grid_corners(grid);
+  const double c0 = col0 - 0.5, c1 = col1 + 0.5, r0 = row0 - 0.5, r1 = row1 + 0.5;
+  return {grid.pixel_to_world({c0, r0}), grid.pixel_to_world({c1, r0}), grid.pixel_to_world({c1, r1}),
+          grid.pixel_to_world({c0, r1})};
+}
+
 /// `grid` cut to the bounding box of its known cells plus `margin_m` (unchanged when all unknown).
 inline OccupancyGrid crop_to_known(const OccupancyGrid& grid, double margin_m) {
   int col0 = grid.width(), col1 = -1, row0 = grid.height(), row1 = -1;
@@ -100,14 +118,20 @@ inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, co
   double resolution = params.resolution;
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d high = -low;
+  std::vector<std::array<Eigen::Vector2d, 4>> corners;  // of each map's known cells, its world
   for (std::size_t i = 0; i < maps.size(); ++i) {
     if (maps[i] == nullptr || maps[i]->empty()) throw parameter_error("fuse_maps: map " + std::to_string(i) + " is empty");
     if (params.resolution == 0.0) resolution = i == 0 ? maps[i]->resolution() : std::min(resolution, maps[i]->resolution());
-    for (const auto& corner : grid_corners(*maps[i])) {
+    corners.push_back(params.margin_m < 0.0 ? grid_corners(*maps[i]) : detail::known_corners(*maps[i]));
+    for (const auto& corner : corners.back()) {
       const Eigen::Vector2d p = T_reference_map[i] * corner;
       low = low.cwiseMin(p);
       high = high.cwiseMax(p);
     }
+  }
+  if (params.margin_m > 0.0) {
+    low.array() -= params.margin_m;
+    high.array() += params.margin_m;
   }
   // (the 1e-6 cell keeps rounding from adding a column: 10 m / 0.1 m is 100 cells, not 101)
   const double width_cells = std::ceil((high.x() - low.x()) / resolution - 1e-6);
@@ -127,7 +151,7 @@ inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, co
     // Merged pixel → map pixel, and the merged pixels the map can cover.
     const Eigen::Affine2d map_from_merged = map.pixel_from_world() * T_reference_map[i].affine().inverse() * merged.world_from_pixel();
     Eigen::Vector2d pixel_low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), pixel_high = -pixel_low;
-    for (const auto& corner : grid_corners(map)) {
+    for (const auto& corner : corners[i]) {
       const Eigen::Vector2d p = merged.world_to_pixel(T_reference_map[i] * corner);
       pixel_low = pixel_low.cwiseMin(p);
       pixel_high = pixel_high.cwiseMax(p);
