@@ -51,11 +51,12 @@ struct MergeCase {
   std::vector<areamatch::Similarity2> truth;
 };
 
-inline MergeCase merge_case(std::uint64_t seed, std::size_t count, bool mirror_one) {
+/// `small`: a building of 14-18 m x 10-13 m instead of 24-40 m x 16-28 m (for the sanitizer run).
+inline MergeCase merge_case(std::uint64_t seed, std::size_t count, bool mirror_one, bool small = false) {
   areamatch::detail::Random random(seed * 104729 + 3);
   areamatch::BuildingParams b;
-  b.width_m = random.uniform(24.0, 40.0);
-  b.height_m = random.uniform(16.0, 28.0);
+  b.width_m = small ? random.uniform(14.0, 18.0) : random.uniform(24.0, 40.0);
+  b.height_m = small ? random.uniform(10.0, 13.0) : random.uniform(16.0, 28.0);
   MergeCase c;
   c.building = areamatch::generate_building(b, seed);
   for (std::size_t i = 0; i < count; ++i) {

@@ -175,7 +175,7 @@ TEST_CASE("merge_maps places N robot maps of generated buildings (N = 2, 5, 10, 
     int all_right = 0, maps_right = 0, maps_total = 0, maps_wrong = 0;
     double min_iou = 1.0;
     for (int b = 0; b < buildings; ++b) {
-      const auto c = areamatch_test::merge_case(static_cast<std::uint64_t>(1000 * n + b), n, /*mirror_one=*/true);
+      const auto c = areamatch_test::merge_case(static_cast<std::uint64_t>(1000 * n + b), n, /*mirror_one=*/true, quick);
       std::vector<Matcher<>::PreparedMap> maps;
       for (const auto& robot : c.robots) maps.push_back(matcher.prepare(robot.grid));
       const MergeResult merged = merge_maps(matcher, maps);
@@ -218,22 +218,26 @@ TEST_CASE("merge_maps places N robot maps of generated buildings (N = 2, 5, 10, 
 
 TEST_CASE("merge_maps: a map of another building is reported as not placed and the others are unaffected") {
   const Matcher<> matcher;
-  const int buildings = areamatch_test::quick_tests() ? 1 : 5;
+  const bool quick = areamatch_test::quick_tests();
+  const int buildings = quick ? 1 : 5;
   for (int b = 0; b < buildings; ++b) {
-    const auto c = areamatch_test::merge_case(static_cast<std::uint64_t>(7000 + b), 4, /*mirror_one=*/false);
-    const auto other = areamatch_test::merge_case(static_cast<std::uint64_t>(8000 + b), 1, false);
+    const auto c = areamatch_test::merge_case(static_cast<std::uint64_t>(7000 + b), quick ? 2 : 4, /*mirror_one=*/false, quick);
+    const auto other = areamatch_test::merge_case(static_cast<std::uint64_t>(8000 + b), 1, false, quick);
     std::vector<Matcher<>::PreparedMap> maps;
     for (const auto& robot : c.robots) maps.push_back(matcher.prepare(robot.grid));
     const MergeResult alone = merge_maps(matcher, maps);
     maps.push_back(matcher.prepare(other.robots[0].grid));
     MergeParams params;
-    params.names = {"a", "b", "c", "d", "stranger"};
+    params.names.clear();
+    for (std::size_t m = 0; m + 1 < maps.size(); ++m) params.names.push_back("map " + std::to_string(m));
+    params.names.push_back("stranger");
     const MergeResult with_stranger = merge_maps(matcher, maps, params);
     CHECK_FALSE(with_stranger.ok);
-    CHECK_FALSE(with_stranger.maps[4].placed);
-    CHECK(with_stranger.maps[4].reason.find("no accepted match") != std::string::npos);
-    CHECK(with_stranger.maps[4].reason.find("was rejected: ") != std::string::npos);
-    for (std::size_t m = 0; m < 4; ++m) {
+    const std::size_t stranger = maps.size() - 1;
+    CHECK_FALSE(with_stranger.maps[stranger].placed);
+    CHECK(with_stranger.maps[stranger].reason.find("no accepted match") != std::string::npos);
+    CHECK(with_stranger.maps[stranger].reason.find("was rejected: ") != std::string::npos);
+    for (std::size_t m = 0; m < stranger; ++m) {
       CHECK(with_stranger.maps[m].placed == alone.maps[m].placed);
       CHECK(with_stranger.maps[m].T_reference_map.rotation == alone.maps[m].T_reference_map.rotation);
       CHECK(with_stranger.maps[m].T_reference_map.translation == alone.maps[m].T_reference_map.translation);
@@ -244,7 +248,7 @@ TEST_CASE("merge_maps: a map of another building is reported as not placed and t
 
 TEST_CASE("merge_maps: bad input is refused, maps without areas are reported, results are deterministic") {
   const Matcher<> matcher;
-  const auto c = areamatch_test::merge_case(42, 2, false);
+  const auto c = areamatch_test::merge_case(42, 2, false, areamatch_test::quick_tests());
   std::vector<Matcher<>::PreparedMap> maps{matcher.prepare(c.robots[0].grid)};
   CHECK_THROWS_AS(merge_maps(matcher, maps), parameter_error);  // one map
   maps.push_back(matcher.prepare(c.robots[1].grid));
@@ -292,11 +296,13 @@ TEST_CASE("merge_maps until_connected: fewer matches, measured against all pairs
   MatcherParams matcher_params;
   matcher_params.allow_reflection = true;
   const Matcher<> matcher(matcher_params);
-  const int buildings = areamatch_test::quick_tests() ? 1 : 20;
+  const bool quick = areamatch_test::quick_tests();
+  const int buildings = quick ? 1 : 20;
+  const std::size_t n = quick ? 4 : 10;
   int all_right = 0, maps_wrong = 0;
   std::size_t matches = 0;
   for (int b = 0; b < buildings; ++b) {
-    const auto c = areamatch_test::merge_case(static_cast<std::uint64_t>(1000 * 10 + b), 10, /*mirror_one=*/true);
+    const auto c = areamatch_test::merge_case(static_cast<std::uint64_t>(1000 * 10 + b), n, /*mirror_one=*/true, quick);
     std::vector<Matcher<>::PreparedMap> maps;
     for (const auto& robot : c.robots) maps.push_back(matcher.prepare(robot.grid));
     MergeParams params;
@@ -315,13 +321,18 @@ TEST_CASE("merge_maps until_connected: fewer matches, measured against all pairs
     }
     all_right += right;
   }
-  MESSAGE("until_connected, N = 10: " << all_right << " / " << buildings << " buildings with every map right, "
-                                      << maps_wrong << " maps placed wrongly, " << matches << " matches (all pairs: "
-                                      << 45 * buildings << ")");
+  const std::size_t all_pairs = n * (n - 1) / 2 * static_cast<std::size_t>(buildings);
+  MESSAGE("until_connected, N = " << n << ": " << all_right << " / " << buildings << " buildings with every map right, "
+                                   << maps_wrong << " maps placed wrongly, " << matches << " matches (all pairs: " << all_pairs
+                                   << ")");
   // Measured: 180 matches instead of 900, 18 / 20 buildings right, and 2 of the 200 maps placed
   // wrongly — accepted wrong matches that no loop checks (all pairs: 0 wrong, above). That is
   // why all_pairs is the default; until_connected is for when matching time matters more.
-  CHECK(matches <= 0.25 * 45 * buildings);
+  if (quick) {  // one small building: the code runs (its rates mean nothing on one sample)
+    CHECK(matches <= all_pairs);
+    return;
+  }
+  CHECK(matches <= 0.25 * all_pairs);
   CHECK(all_right >= 0.85 * buildings);
-  CHECK(maps_wrong <= 0.02 * 10 * buildings);
+  CHECK(maps_wrong <= 0.02 * n * buildings);
 }

@@ -59,38 +59,43 @@ inline std::array<Eigen::Vector2d, 4> grid_corners(const OccupancyGrid& grid) {
 
 namespace detail {
 
+/// The pixel box of `grid`'s known (free or occupied) cells, inclusive; empty (col1 < 0) when
+/// none is known.
+struct CellBox {
+  int col0 = 0, col1 = -1, row0 = 0, row1 = -1;
+  bool empty() const { return col1 < col0; }
+};
+
+inline CellBox known_box(const OccupancyGrid& grid) {
+  CellBox box{grid.width(), -1, grid.height(), -1};
+  for (int row = 0; row < grid.height(); ++row) {
+    for (int col = 0; col < grid.width(); ++col) {
+      if (grid.at(col, row) == CellState::unknown) continue;
+      box.col0 = std::min(box.col0, col), box.col1 = std::max(box.col1, col);
+      box.row0 = std::min(box.row0, row), box.row1 = std::max(box.row1, row);
+    }
+  }
+  return box;
+}
+
 /// The world corners of the box of `grid`'s known (free or occupied) cells; the whole image's
 /// when none is known. Cells outside it vote for nothing, so fusion reads only inside it (a
 /// hand-held scan is mostly unknown margin).
 inline std::array<Eigen::Vector2d, 4> known_corners(const OccupancyGrid& grid) {
-  int col0 = grid.width(), col1 = -1, row0 = grid.height(), row1 = -1;
-  for (int row = 0; row < grid.height(); ++row) {
-    for (int col = 0; col < grid.width(); ++col) {
-      if (grid.at(col, row) == CellState::unknown) continue;
-      col0 = std::min(col0, col), col1 = std::max(col1, col);
-      row0 = std::min(row0, row), row1 = std::max(row1, row);
-    }
-  }
-  if (col1 < 0) return grid_corners(grid);
-  const double c0 = col0 - 0.5, c1 = col1 + 0.5, r0 = row0 - 0.5, r1 = row1 + 0.5;
+  const CellBox box = known_box(grid);
+  if (box.empty()) return grid_corners(grid);
+  const double c0 = box.col0 - 0.5, c1 = box.col1 + 0.5, r0 = box.row0 - 0.5, r1 = box.row1 + 0.5;
   return {grid.pixel_to_world({c0, r0}), grid.pixel_to_world({c1, r0}), grid.pixel_to_world({c1, r1}),
           grid.pixel_to_world({c0, r1})};
 }
 
 /// `grid` cut to the bounding box of its known cells plus `margin_m` (unchanged when all unknown).
 inline OccupancyGrid crop_to_known(const OccupancyGrid& grid, double margin_m) {
-  int col0 = grid.width(), col1 = -1, row0 = grid.height(), row1 = -1;
-  for (int row = 0; row < grid.height(); ++row) {
-    for (int col = 0; col < grid.width(); ++col) {
-      if (grid.at(col, row) == CellState::unknown) continue;
-      col0 = std::min(col0, col), col1 = std::max(col1, col);
-      row0 = std::min(row0, row), row1 = std::max(row1, row);
-    }
-  }
-  if (col1 < 0) return grid;
+  const CellBox box = known_box(grid);
+  if (box.empty()) return grid;
   const int margin = static_cast<int>(std::ceil(margin_m / grid.resolution()));
-  col0 = std::max(0, col0 - margin), row0 = std::max(0, row0 - margin);
-  col1 = std::min(grid.width() - 1, col1 + margin), row1 = std::min(grid.height() - 1, row1 + margin);
+  const int col0 = std::max(0, box.col0 - margin), row0 = std::max(0, box.row0 - margin);
+  const int col1 = std::min(grid.width() - 1, box.col1 + margin), row1 = std::min(grid.height() - 1, box.row1 + margin);
   // The new lower-left corner: the old one moved by the columns cut on the left and the rows cut
   // at the bottom (rows count from the top).
   const Pose2 origin{grid.origin().x + col0 * grid.resolution(),
@@ -106,8 +111,8 @@ inline OccupancyGrid crop_to_known(const OccupancyGrid& grid, double margin_m) {
 
 /// Lays `maps[i]` into one grid by `T_reference_map[i]` (map world → the merged grid's world
 /// frame) and fuses them by the rule of the file comment. The merged grid's origin has yaw 0; it
-/// covers the cells some map saw plus `margin_m` (or the maps' whole union). Throws `limit_error` when the union needs
-/// more than `max_grid_cells` cells at the resolution.
+/// covers the cells some map saw plus `margin_m` (or the maps' whole union). Throws `limit_error`
+/// when that needs more than `max_grid_cells` cells at the resolution.
 inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, const std::vector<Similarity2>& T_reference_map,
                                const FuseParams& params = {}) {
   params.validate();
