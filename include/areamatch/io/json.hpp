@@ -81,6 +81,12 @@ inline std::string area_graph_json(const AreaGraph& graph) {
 namespace detail {
 /// A number, or null when it is not finite (JSON has no NaN).
 inline std::string json_number(double value) { return std::isfinite(value) ? format_double(value) : "null"; }
+
+/// [[a, b, tx], [c, d, ty]]
+inline std::string json_pixel_transform(const PixelTransform& m) {
+  return "[[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) + "], [" +
+         json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
+}
 }  // namespace detail
 
 /// A match result as one JSON object on one line: ok, reason (when not ok), the transform in
@@ -89,15 +95,13 @@ inline std::string json_number(double value) { return std::isfinite(value) ? for
 inline std::string match_result_json(const MatchResult& r) {
   using detail::json_number;
   const Similarity2& T = r.T_dest_source;
-  const PixelTransform& m = r.pixel_transform;
   std::string out = "{\"ok\": " + std::string(r.ok ? "true" : "false");
   if (!r.ok) out += ", \"reason\": " + detail::json_quote(r.reason);
   out += ", \"rotation_deg\": " + json_number(T.rotation * 180.0 / pi);
   out += ", \"translation_m\": [" + json_number(T.translation.x()) + ", " + json_number(T.translation.y()) + "]";
   out += ", \"scale\": " + json_number(T.scale) + ", \"scale_estimated\": " + (r.scale_estimated ? "true" : "false") +
          ", \"reflected\": " + (T.reflected ? "true" : "false");
-  out += ", \"pixel_transform\": [[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) +
-         "], [" + json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
+  out += ", \"pixel_transform\": " + detail::json_pixel_transform(r.pixel_transform);
   out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence) +
          ", \"ambiguous\": " + (r.ambiguous ? "true" : "false") + ", \"p_correct\": " + json_number(r.p_correct);
   out += ", \"margin_different\": " + json_number(r.margin_different) +
@@ -136,13 +140,6 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"selection_s\": " + json_number(t.selection_s) + "}}";
   return out;
 }
-
-namespace detail {
-inline std::string json_pixel_transform(const PixelTransform& m) {
-  return "[[" + json_number(m(0, 0)) + ", " + json_number(m(0, 1)) + ", " + json_number(m(0, 2)) + "], [" +
-         json_number(m(1, 0)) + ", " + json_number(m(1, 1)) + ", " + json_number(m(1, 2)) + "]]";
-}
-}  // namespace detail
 
 /// A merge result as one JSON object on one line (what `areamatch merge --json` prints): ok, the
 /// reference, per map (in the order given) whether it was placed, why not, its transform to the
