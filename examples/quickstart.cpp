@@ -14,8 +14,8 @@ int main(int argc, char** argv) try {
   matcher.params.allow_reflection = true;        // one map may be a mirror image of the other
   const areamatch::MatchResult m = matcher.match(robot, layout);  // segments both, then matches
   if (!m.ok) return std::cerr << "no match: " << m.reason << "\n", 1;
-  std::cout << "rotation " << m.T_dest_source.rotation << " rad, translation "
-            << m.T_dest_source.translation.transpose() << " m, confidence " << m.confidence << "\n";
+  std::cout << "rotation " << m.T_dest_source.rotation * 180.0 / areamatch::pi << " deg, translation "
+            << m.T_dest_source.translation.transpose() << " m, p_correct " << m.p_correct << "\n";
   for (const auto& a : m.matched_areas) std::cout << "area " << a.source << " -> " << a.dest << "\n";
 } catch (const areamatch::error& e) {  // missing file, corrupt image, bad parameter
   return std::cerr << e.what() << "\n", 2;

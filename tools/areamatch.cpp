@@ -80,6 +80,34 @@ areamatch::LoadOptions load_options(const Args& args) {
   return options;
 }
 
+/// What a bare PNG/PGM (no YAML) is read with because nothing said otherwise: resolution, origin,
+/// thresholds. Empty for a YAML, whose values are the map's own.
+std::vector<std::string> assumed_defaults(const std::string& path, const areamatch::LoadOptions& options) {
+  const std::string ext = areamatch::detail::lowercase_extension(path);
+  if (ext == "yaml" || ext == "yml") return {};
+  std::vector<std::string> assumed;
+  if (!options.resolution) assumed.push_back("resolution");
+  assumed.push_back("origin");
+  if (!options.free_thresh || !options.occupied_thresh || !options.negate) assumed.push_back("thresholds");
+  return assumed;
+}
+
+/// Says on stderr which defaults a bare image is read with (a map matched at a wrong scale
+/// fails silently otherwise). `resolution_flag` names the option that sets its resolution.
+void note_assumed_defaults(const std::string& path, const areamatch::LoadOptions& options, const std::string& resolution_flag) {
+  const auto assumed = assumed_defaults(path, options);
+  if (assumed.empty()) return;
+  std::string what;
+  for (const auto& a : assumed) {
+    const std::string part = a == "resolution"  ? "0.05 m per pixel"
+                             : a == "origin"    ? "origin (0, 0, 0)"
+                                                : "map_server's thresholds (occupied if p > 0.65, free if p < 0.196)";
+    what += (what.empty() ? "" : ", ") + part;
+  }
+  std::cerr << "areamatch: " << path << " has no YAML: assuming " << what << " (give its map_server YAML"
+            << (resolution_flag.empty() ? std::string() : ", or " + resolution_flag + " M,") << " to say otherwise)\n";
+}
+
 // ---------------------------------------------------------------------------------------- info
 
 const char* kInfoHelp =
@@ -94,7 +122,11 @@ int run_info(const std::vector<std::string>& tokens) {
     return 0;
   }
   args.expect_positional(1, "MAP");
-  const auto loaded = areamatch::load_map_with_image(args.positional()[0], load_options(args));
+  const auto options = load_options(args);
+  const auto loaded = areamatch::load_map_with_image(args.positional()[0], options);
+  const auto assumed = assumed_defaults(args.positional()[0], options);
+  const auto is_assumed = [&](const char* what) { return std::find(assumed.begin(), assumed.end(), what) != assumed.end(); };
+  const auto mark = [&](const char* what) { return is_assumed(what) ? std::string(" (assumed: no YAML)") : std::string(); };
   const auto& g = loaded.grid;
   const auto counts = g.count();
   const double total = static_cast<double>(counts.total());
@@ -106,7 +138,9 @@ int run_info(const std::vector<std::string>& tokens) {
               << ", \"resolution\": " << format_double(g.resolution()) << ", \"origin\": [" << format_double(g.origin().x)
               << ", " << format_double(g.origin().y) << ", " << format_double(g.origin().yaw) << "]"
               << ", \"free_cells\": " << counts.free << ", \"occupied_cells\": " << counts.occupied
-              << ", \"unknown_cells\": " << counts.unknown << "}\n";
+              << ", \"unknown_cells\": " << counts.unknown << ", \"assumed\": [";
+    for (std::size_t i = 0; i < assumed.size(); ++i) std::cout << (i ? ", " : "") << areamatch::detail::json_quote(assumed[i]);
+    std::cout << "]}\n";
     return 0;
   }
   std::cout << "map:        " << args.positional()[0] << "\n"
@@ -114,15 +148,15 @@ int run_info(const std::vector<std::string>& tokens) {
             << (loaded.image.has_alpha() ? ", with alpha" : "") << ")\n"
             << "size:       " << g.width() << " x " << g.height() << " cells ("
             << format_fixed(g.width() * g.resolution(), 2) << " x " << format_fixed(g.height() * g.resolution(), 2) << " m)\n"
-            << "resolution: " << format_double(g.resolution()) << " m/cell\n"
+            << "resolution: " << format_double(g.resolution()) << " m/cell" << mark("resolution") << "\n"
             << "origin:     x " << format_double(g.origin().x) << " m, y " << format_double(g.origin().y) << " m, yaw "
-            << format_double(g.origin().yaw) << " rad\n"
+            << format_double(g.origin().yaw) << " rad" << mark("origin") << "\n"
             << "free:       " << percent(counts.free) << " % (" << counts.free << " cells, "
             << format_fixed(counts.free * g.resolution() * g.resolution(), 1) << " m^2)\n"
             << "occupied:   " << percent(counts.occupied) << " % (" << counts.occupied << " cells)\n"
             << "unknown:    " << percent(counts.unknown) << " % (" << counts.unknown << " cells)\n"
             << "thresholds: occupied if p > " << format_double(t.occupied_thresh) << ", free if p < "
-            << format_double(t.free_thresh) << (t.negate ? ", negated" : "") << "\n";
+            << format_double(t.free_thresh) << (t.negate ? ", negated" : "") << mark("thresholds") << "\n";
   return 0;
 }
 
@@ -319,7 +353,9 @@ int run_segment(const std::vector<std::string>& tokens) {
   }
   args.expect_positional(1, "MAP");
   const auto segmenter = segmenter_from(args);
-  const auto grid = areamatch::load_map(args.positional()[0], load_options(args));
+  const auto options = load_options(args);
+  note_assumed_defaults(args.positional()[0], options, "--resolution");
+  const auto grid = areamatch::load_map(args.positional()[0], options);
   const auto details = segmenter.segment_with_details(grid);
   const auto& graph = details.graph;
   const auto& t = details.timings;
@@ -402,6 +438,8 @@ int run_match(const std::vector<std::string>& tokens) {
   options.estimate_scale = args.flag("estimate-scale");
   options.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
 
+  note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
+  note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
   const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
   const auto& [source, dest, source_graph, dest_graph, result] = run;
 
@@ -513,6 +551,7 @@ int run_merge(const std::vector<std::string>& tokens) {
   if (const auto a = args.number("min-agreement", false, true)) matcher.params.min_agreement = *a;
   if (const auto p = args.number("min-p-correct", false, true)) matcher.params.decision.min_p_correct = *p;
 
+  for (const auto& path : paths) note_assumed_defaults(path, {}, "");
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   // Each map loaded and prepared on its own, `--threads` at a time (errors: the first map's).

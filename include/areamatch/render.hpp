@@ -189,9 +189,14 @@ inline RgbImage render_match_source(const OccupancyGrid& source, const AreaGraph
   return image;
 }
 
-/// Two pictures side by side with a gap (white), top-aligned.
-inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, int gap = 10) {
-  RgbImage out(left.width + gap + right.width, std::max(left.height, right.height));
+/// Two pictures side by side, top-aligned, with a white gap between them; the shorter one is
+/// padded with `background` (the maps' unknown colour, so the padding reads as "no map here").
+inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, const Rgb& background = MapColors{}.unknown,
+                             int gap = 10) {
+  RgbImage out(left.width + gap + right.width, std::max(left.height, right.height), background[0], background[1],
+               background[2]);
+  for (int r = 0; r < out.height; ++r)
+    for (int c = left.width; c < left.width + gap; ++c) out.set(c, r, 255, 255, 255);
   auto blit = [&out](const RgbImage& in, int x0) {
     for (int r = 0; r < in.height; ++r)
       for (int c = 0; c < in.width; ++c) {
@@ -209,7 +214,7 @@ inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, int ga
 inline RgbImage render_match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
                              const AreaGraph& dest_graph, const MatchResult& result, const MapColors& colors = {}) {
   return side_by_side(render_match_source(source, source_graph, result, colors),
-                      render_match_overlay(source, dest, dest_graph, result, colors));
+                      render_match_overlay(source, dest, dest_graph, result, colors), colors.unknown);
 }
 
 /// `image` shrunk by an integer `factor` (≥ 1). Each block becomes its mean colour, unless it

@@ -1,6 +1,6 @@
 #pragma once
 /// \file io/match_files.hpp
-/// Matching two map files end to end: load both, segment each with its own door width, match,
+/// Matching two maps end to end (files, or grids in memory): load both, segment each with its own door width, match,
 /// and time every step. What `areamatch match` and `areamatch eval` run for one pair.
 ///
 /// \code
@@ -59,14 +59,20 @@ inline VoronoiSegmenter segmenter_with_door(const std::optional<double>& door_wi
   return segmenter;
 }
 
+/// Sets what `options` asks of the matcher's parameters (the load, door-width and `paper`
+/// options are the caller's).
+inline void apply_match_options(MatcherParams& params, const MapPairOptions& options) {
+  params.allow_reflection = options.allow_reflection;
+  params.threads = options.threads;
+  if (options.k) params.k = *options.k;
+  if (options.min_score) params.min_score = *options.min_score;
+  if (options.min_agreement) params.min_agreement = *options.min_agreement;
+  if (options.min_p_correct) params.decision.min_p_correct = *options.min_p_correct;
+}
+
 template <class M>
 MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRun& run) {
-  matcher.params.allow_reflection = options.allow_reflection;
-  matcher.params.threads = options.threads;
-  if (options.k) matcher.params.k = *options.k;
-  if (options.min_score) matcher.params.min_score = *options.min_score;
-  if (options.min_agreement) matcher.params.min_agreement = *options.min_agreement;
-  if (options.min_p_correct) matcher.params.decision.min_p_correct = *options.min_p_correct;
+  apply_match_options(matcher.params, options);
   if (options.estimate_scale) {
     matcher.params.estimate_scale = true;
     matcher.segmenter = segmenter_with_door(options.source_door_width_m);
@@ -75,32 +81,29 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRu
   return matcher.match(run.source, run.source_graph, run.dest, run.dest_graph);
 }
 
-}  // namespace detail
-
-/// Loads, segments and matches `source_path` onto `dest_path`. Throws what `load_map` and the
-/// segmenter throw on bad input; "no acceptable match" is `result.ok == false`.
-inline MapPairRun match_map_files(const std::string& source_path, const std::string& dest_path,
-                                  const MapPairOptions& options = {}) {
+/// One end-to-end run: `get_grid(0)` (the source) and `get_grid(1)` (the destination) are
+/// fetched and segmented each on its own (side by side with `threads` ≥ 2; with estimate_scale
+/// the source is segmented at each candidate scale, inside the match), then matched.
+/// `result.timings.total_s` counts from the first fetch.
+template <class GetGrid>
+MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
   using clock = std::chrono::steady_clock;
   using seconds = std::chrono::duration<double>;
   const auto start = clock::now();
   MapPairRun run;
-  // Each map loaded and segmented on its own (side by side with `threads` ≥ 2). With
-  // estimate_scale the source is segmented at each candidate scale, inside the match.
   double segment_s[2] = {0.0, 0.0};
-  detail::for_each_index(2, options.threads, [&](std::size_t i) {
+  for_each_index(2, options.threads, [&](std::size_t i) {
     const bool source = i == 0;
     OccupancyGrid& grid = source ? run.source : run.dest;
-    grid = load_map(source ? source_path : dest_path, source ? options.source_load : options.dest_load);
+    grid = get_grid(i);
     if (source && options.estimate_scale) return;
     const auto segment_start = clock::now();
     (source ? run.source_graph : run.dest_graph) =
-        detail::segmenter_with_door(source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
+        segmenter_with_door(source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
     segment_s[i] = seconds(clock::now() - segment_start).count();
   });
   const auto match_start = clock::now();
-  run.result = options.paper ? detail::configured_match(PaperMatcher{}, options, run)
-                             : detail::configured_match(Matcher<>{}, options, run);
+  run.result = options.paper ? configured_match(PaperMatcher{}, options, run) : configured_match(Matcher<>{}, options, run);
   const auto end = clock::now();
   MatchTimings& t = run.result.timings;
   t.segment_dest_s = segment_s[1];
@@ -112,6 +115,23 @@ inline MapPairRun match_map_files(const std::string& source_path, const std::str
   }
   t.total_s = seconds(end - start).count();
   return run;
+}
+
+}  // namespace detail
+
+/// Loads, segments and matches `source_path` onto `dest_path`. Throws what `load_map` and the
+/// segmenter throw on bad input; "no acceptable match" is `result.ok == false`.
+inline MapPairRun match_map_files(const std::string& source_path, const std::string& dest_path,
+                                  const MapPairOptions& options = {}) {
+  return detail::run_map_pair(options, [&](std::size_t i) {
+    return load_map(i == 0 ? source_path : dest_path, i == 0 ? options.source_load : options.dest_load);
+  });
+}
+
+/// Segments and matches two grids already in memory, exactly as `match_map_files` does for two
+/// files (the load options are not used): the same maps give the same result either way.
+inline MapPairRun match_grids(const OccupancyGrid& source, const OccupancyGrid& dest, const MapPairOptions& options = {}) {
+  return detail::run_map_pair(options, [&](std::size_t i) { return i == 0 ? source : dest; });
 }
 
 }  // namespace areamatch
