@@ -29,7 +29,7 @@ scripts/setup.sh --deps-only
 build=build-fuzz
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DAREAMATCH_BUILD_FUZZERS=ON \
       -DAREAMATCH_BUILD_TESTS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF -DAREAMATCH_BUILD_BENCHMARKS=OFF \
-      -DAREAMATCH_BUILD_TOOLS=OFF -DAREAMATCH_INSTALL=OFF > /dev/null
+      -DAREAMATCH_BUILD_TOOLS=OFF -DAREAMATCH_INSTALL=OFF -DAREAMATCH_BUILD_PYTHON=OFF > /dev/null
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"

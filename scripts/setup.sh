@@ -1,12 +1,32 @@
 #!/usr/bin/env bash
 # Installs what areamatch needs on Debian 12 (skipped when already there), then configures and
-# builds it in Release mode into ./build (or $AREAMATCH_BUILD_DIR); with --sanitize, a Debug build
-# with AddressSanitizer and UndefinedBehaviorSanitizer instead; with --deps-only, packages only.
+# builds it in Release mode into ./build (or $AREAMATCH_BUILD_DIR).
+#   --sanitize     a Debug build with AddressSanitizer and UndefinedBehaviorSanitizer instead
+#   --deps-only    packages only
+#   --target T     build only target T (and what it needs), e.g. demo; may be repeated
+#   --no-python    skip the Python module's packages and the module
 # Used by demo.sh, test.sh, sanitize.sh and fuzz.sh.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+mode=release
+python=yes
+targets=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --sanitize) mode=sanitize ;;
+    --deps-only) mode=deps ;;
+    --no-python) python=no ;;
+    --target) targets+=(--target "$2"); shift ;;
+    *) echo "setup.sh: unknown option $1" >&2; exit 2 ;;
+  esac
+  shift
+done
+
 packages=(libboost1.81-dev libeigen3-dev libstb-dev libyaml-cpp-dev doctest-dev libbenchmark-dev cmake g++ make)
+if [ "$python" = yes ] && [ "$mode" != sanitize ]; then
+  packages+=(pybind11-dev python3-dev python3-numpy python3-pytest)
+fi
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
@@ -19,18 +39,25 @@ if [ ${#missing[@]} -gt 0 ]; then
   DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
 fi
 
-[ "${1:-}" = "--deps-only" ] && exit 0
+[ "$mode" = deps ] && exit 0
 
 build_dir="${AREAMATCH_BUILD_DIR:-build}"
-if [ "${1:-}" = "--sanitize" ]; then
+if [ "$mode" = sanitize ]; then
   # ASan + UBSan, every report fatal. -O1 (what ASan's docs advise): it doubles the compile time,
   # but at -O0 the unoptimised Eigen and Boost code ran the tests ~10x slower (test_matcher:
   # over the 1500 s timeout at -O0, 118 s at -O1), far more than the compile costs.
   flags="-O1 -g -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"
   cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_FLAGS="$flags" \
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DAREAMATCH_BUILD_BENCHMARKS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF \
-        -DAREAMATCH_SHARED_TESTS=OFF ${AREAMATCH_CMAKE_ARGS:-}
+        -DAREAMATCH_SHARED_TESTS=OFF -DAREAMATCH_BUILD_PYTHON=OFF ${AREAMATCH_CMAKE_ARGS:-}
 else
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release ${AREAMATCH_CMAKE_ARGS:-}
+  # The Python module is built for Debian's interpreter, the one the python3-* packages above
+  # serve (another python3 may come first on PATH, e.g. pyenv's, without numpy or pytest).
+  python_args=(-DAREAMATCH_BUILD_PYTHON=OFF)
+  if [ "$python" = yes ]; then
+    python_args=(-DAREAMATCH_BUILD_PYTHON=ON)
+    if [ -x /usr/bin/python3 ]; then python_args+=(-DPython3_EXECUTABLE=/usr/bin/python3); fi
+  fi
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Release "${python_args[@]}" ${AREAMATCH_CMAKE_ARGS:-}
 fi
-cmake --build "$build_dir" -j "$(nproc)"
+cmake --build "$build_dir" -j "$(nproc)" "${targets[@]}"

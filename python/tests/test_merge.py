@@ -1,0 +1,61 @@
+"""Merging from Python: maps placed in one frame, strangers reported, the CLI's JSON."""
+
+import json
+import subprocess
+
+import numpy as np
+
+import areamatch
+from conftest import without_timings
+
+
+def robot_maps(building, count):
+    return [areamatch.synthetic.make_robot_map(building, 100 + i, rotation_rad=0.4 * i + 0.3,
+                                               translation_m=(0.5 * i, -0.3 * i), explored_fraction=0.6)
+            for i in range(count)]
+
+
+def test_merge_places_every_map(building):
+    robots = robot_maps(building, 3)
+    result = areamatch.merge([building.layout] + [r.map for r in robots], threads=2)
+    assert result.ok and result.reference == 0
+    for placed, robot in zip(result.maps[1:], robots):
+        assert placed["placed"] and placed["reason"] == ""
+        T = placed["T_reference_map"]
+        assert np.allclose(T[:2, :2], robot.T_dest_source[:2, :2], atol=0.01)
+        assert np.linalg.norm(T[:2, 2] - robot.T_dest_source[:2, 2]) < 0.2
+    assert len(result.edges) == 6 and all("used" in e for e in result.edges)
+    merged = result.merged
+    assert isinstance(merged, areamatch.Map) and merged.resolution == building.layout.resolution
+    assert np.asarray(result.picture()).shape == (merged.height, merged.width, 3)
+    for source, dest, match in result.edge_results():
+        assert 0 <= source < 4 and 0 <= dest < 4 and isinstance(match, areamatch.Result)
+
+
+def test_merge_reports_a_stranger(building):
+    stranger = areamatch.synthetic.generate_building(4321, width_m=22.0, height_m=28.0).layout
+    result = areamatch.merge([building.layout, robot_maps(building, 1)[0].map, stranger],
+                             names=["layout", "robot", "stranger"])
+    assert not result.ok
+    assert result.maps[1]["placed"] and not result.maps[2]["placed"] and result.maps[2]["reason"]
+    assert result.to_dict()["maps"][2]["path"] == "stranger"
+
+
+def test_merge_errors(building):
+    import pytest
+    with pytest.raises(ValueError, match="at least two maps"):
+        areamatch.merge([building.layout])
+    with pytest.raises(ValueError, match="reference"):
+        areamatch.merge([building.layout, building.layout], reference=5)
+    with pytest.raises(TypeError):
+        areamatch.merge([building.layout, "map.yaml"])
+
+
+def test_merge_equals_the_cli_json(building, cli, tmp_path):
+    paths = [building.layout.save(str(tmp_path / "layout.pgm"))]
+    for i, robot in enumerate(robot_maps(building, 2)):
+        paths.append(robot.map.save(str(tmp_path / f"robot{i}.pgm")))
+    out = subprocess.run([cli, "merge", *paths, "--json"], capture_output=True, text=True)
+    assert out.returncode == 0, out.stderr
+    python = areamatch.merge([areamatch.load_map(p) for p in paths], names=paths, threads=2)
+    assert without_timings(python.to_dict()) == without_timings(json.loads(out.stdout))
