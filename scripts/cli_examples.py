@@ -36,13 +36,15 @@ MASKS = [
     (re.compile(r"\b(binarize|boundary|skeleton|rooms|areas) \d+\.\d+"), r"\1 <t>"),
     (re.compile(r"\((prepare) \d+, (match) \d+, (fuse) \d+\)"), r"(\1 <t>, \2 <t>, \3 <t>)"),
     # eval's table: name, areas src/dst, then four times (seg src, seg dst, match, total).
-    (re.compile(r"^(\S+\s+\d+/\d+)(\s+)\d+\.\d+\s+\d+\.\d+\s+\d+\.\d+\s+\d+\.\d+"), r"\1\2<times>"),
+    (re.compile(r"^(\S+ \d+/\d+) \d+\.\d+ \d+\.\d+ \d+\.\d+ \d+\.\d+"), r"\1 <times>"),
     (re.compile(r"(median|mean) \d+(\.\d+)? ms"), r"\1 <t> ms"),
 ]
 PROGRESS = re.compile(r"^\[\d+/\d+\] ")
 
 
 def mask(line):
+    # Columns are padded to their widest value, which is often a time: compare words, not spaces.
+    line = re.sub(r"\s+", " ", line.strip())
     for pattern, replacement in MASKS:
         line = pattern.sub(replacement, line)
     return line.rstrip()

@@ -58,7 +58,11 @@ def main(argv=None):
     extent = [d.origin[0], d.origin[0] + d.width * d.resolution, d.origin[1], d.origin[1] + d.height * d.resolution]
     fig, ax = plt.subplots(figsize=(8, 8))
     ax.imshow(d.to_image(), cmap="gray", extent=extent, vmin=0, vmax=255)  # rows top to bottom = y down
-    rows, cols = np.nonzero(source.cells == areamatch.OCCUPIED)
+    # Walls: occupied cells next to free space (not the solid outside some maps draw).
+    cells = np.pad(source.cells, 1, constant_values=areamatch.UNKNOWN)
+    free = cells == areamatch.FREE
+    near_free = free[:-2, 1:-1] | free[2:, 1:-1] | free[1:-1, :-2] | free[1:-1, 2:]
+    rows, cols = np.nonzero((source.cells == areamatch.OCCUPIED) & near_free)
     pixels = np.stack([cols, rows, np.ones_like(cols)]).astype(float)
     world = result.T_dest_source @ source.world_from_pixel() @ pixels
     ax.scatter(world[0], world[1], s=0.2, c="tab:red", label="source walls, placed")

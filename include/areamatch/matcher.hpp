@@ -78,9 +78,11 @@ struct MatcherParams {
   /// each candidate scale) and `refine` (the ICP fits the scale); about 10× the time of a match.
   bool estimate_scale = false;
   ScaleParams scale;
-  /// Threads for what the two maps of a match need each on its own (segmenting both grids,
-  /// building each map's rasters, edges and lookups): 2 runs them side by side on a multi-core
-  /// machine. The result is the same, bit for bit, for any count (0: one per hardware thread).
+  /// Threads of one match: the two maps segmented and their rasters, edges and lookups built side
+  /// by side, then the hypotheses of the area pairs, the candidates' scores and the finalists' ICP
+  /// spread over them. The result is the same, bit for bit, for any count (0: one per hardware
+  /// thread); with more than one, the policies' const member functions are called from several
+  /// threads at once (the built-in ones are pure).
   unsigned threads = 1;
 
   // Whole-map verification.
@@ -619,14 +621,18 @@ class Matcher {
     const AreaRaster& dest_raster = dest_data.coarse;
     HypothesisInputs inputs{&source, &dest, &source_raster, &dest_raster, source_data.wall_direction,
                             dest_data.wall_direction};
+    // One job per (side, pair), each into its own list, joined in job order: the same list for
+    // any thread count.
+    const std::vector<bool> side_list = sides();
+    std::vector<std::vector<Hypothesis>> per_job(side_list.size() * pairs.size());
+    detail::for_each_index(per_job.size(), params.threads, [&](std::size_t job) {
+      const AreaPair& pair = pairs[job % pairs.size()];
+      const auto segments = features.segments(source_descriptors, dest_descriptors, static_cast<std::size_t>(pair.source),
+                                              static_cast<std::size_t>(pair.dest));
+      add_pair_hypotheses(inputs, pair, segments, side_list[job / pairs.size()], params.hypotheses, per_job[job]);
+    });
     std::vector<Hypothesis> hypotheses;
-    for (bool reflected : sides()) {
-      for (const AreaPair& pair : pairs) {
-        const auto segments = features.segments(source_descriptors, dest_descriptors,
-                                                static_cast<std::size_t>(pair.source), static_cast<std::size_t>(pair.dest));
-        add_pair_hypotheses(inputs, pair, segments, reflected, params.hypotheses, hypotheses);
-      }
-    }
+    for (auto& list : per_job) hypotheses.insert(hypotheses.end(), list.begin(), list.end());
     result.statistics.hypotheses = hypotheses.size();
     result.timings.hypotheses_s = detail::seconds_since(stage);
     if (hypotheses.empty()) {
@@ -766,14 +772,15 @@ class Matcher {
     std::vector<Eigen::Vector2d> sparse_walls;
     const std::size_t stride = std::max<std::size_t>(1, walls.size() / params.sparse_samples);
     for (std::size_t i = 0; i < walls.size(); i += stride) sparse_walls.push_back(walls[i]);
-    for (auto& c : candidates) {
-      c.score = boundary_inlier_fraction(sparse_walls, edges.dest_lookup, c.T, params.candidate_wall_distance_m);
-    }
+    auto score_on = [&](const std::vector<Eigen::Vector2d>& points) {
+      detail::for_each_index(candidates.size(), params.threads, [&](std::size_t i) {
+        candidates[i].score = boundary_inlier_fraction(points, edges.dest_lookup, candidates[i].T, params.candidate_wall_distance_m);
+      });
+    };
+    score_on(sparse_walls);
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
     if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
-    for (auto& c : candidates) {
-      c.score = boundary_inlier_fraction(walls, edges.dest_lookup, c.T, params.candidate_wall_distance_m);
-    }
+    score_on(walls);
     result.statistics.verified = candidates.size();
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
 
@@ -823,14 +830,17 @@ class Matcher {
         points = &area_points;
         lookup = &area_lookup;
       }
-      for (auto& f : finalists) f.T = refine_icp(*points, *lookup, f.T, refinement);
+      detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
+        finalists[i].T = refine_icp(*points, *lookup, finalists[i].T, refinement);
+      });
       result.statistics.refined = finalists.size();
     }
-    for (auto& f : finalists) {
+    detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
+      auto& f = finalists[i];
       const double iou = free_space_iou(source_fine, dest_fine, f.T);
       const double walls = boundary_inlier_fraction(edge, dest_edge, f.T, params.wall_inlier_distance_m);
       f.score = (1.0 - params.wall_score_weight) * iou + params.wall_score_weight * walls;
-    }
+    });
   }
 
   /// The free-space edges of both maps, each as sparse points (what moves) and a dense lookup
