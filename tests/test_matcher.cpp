@@ -77,6 +77,25 @@ TEST_CASE("the same pair matched 20 times in one process gives the same JSON, bi
   CHECK(without_timings(paper.match(c.robot.grid, c.building.layout)) == paper_first);
 }
 
+TEST_CASE("any thread count gives the same answer, bit for bit") {
+  // MatcherParams::threads spreads segmentation, hypotheses, candidate scores and ICP; each piece
+  // writes its own slot, so the result must not depend on the count.
+  for (const int seed : {7, 13, 21}) {
+    const auto c = areamatch_test::synthetic_case(seed);
+    Matcher<> matcher;
+    matcher.params.allow_reflection = true;
+    PaperMatcher paper;
+    const std::string one = without_timings(matcher.match(c.robot.grid, c.building.layout));
+    const std::string paper_one = without_timings(paper.match(c.robot.grid, c.building.layout));
+    for (const unsigned threads : {2u, 3u, 0u}) {
+      matcher.params.threads = threads;
+      paper.params.threads = threads;
+      CHECK(without_timings(matcher.match(c.robot.grid, c.building.layout)) == one);
+      CHECK(without_timings(paper.match(c.robot.grid, c.building.layout)) == paper_one);
+    }
+  }
+}
+
 TEST_CASE("a map matched against itself gives the identity") {
   const auto building = generate_building({}, 3);
   const MatchResult r = Matcher<>{}.match(building.layout, building.layout);

@@ -562,7 +562,7 @@ int run_merge(const std::vector<std::string>& tokens) {
   areamatch::detail::for_each_index(paths.size(), merge_params.threads, [&](std::size_t i) { maps[i] = matcher.prepare(grids[i]); });
   const auto prepared = clock::now();
   const areamatch::MergeResult result = areamatch::merge_maps(matcher, maps, merge_params);
-  const auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+  const auto seconds = areamatch::detail::seconds_between;
 
   std::vector<const areamatch::OccupancyGrid*> grid_pointers;
   for (const auto& map : maps) grid_pointers.push_back(&map.grid());

@@ -28,6 +28,7 @@
 #include "area_graph.hpp"
 #include "detail/format.hpp"
 #include "detail/parallel.hpp"
+#include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
 #include "match/clusterer.hpp"
@@ -194,10 +195,6 @@ struct MatcherParams {
 };
 
 namespace detail {
-
-inline double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 /// A transform with its whole-map score.
 struct ScoredTransform {

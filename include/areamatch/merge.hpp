@@ -27,6 +27,7 @@
 
 #include "detail/format.hpp"
 #include "detail/parallel.hpp"
+#include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
 #include "match/result.hpp"
@@ -162,10 +163,6 @@ inline std::vector<Eigen::Vector2d> match_anchors(const AreaGraph& source_graph,
 
 inline double free_area_m2(const OccupancyGrid& grid) {
   return static_cast<double>(grid.count().free) * grid.resolution() * grid.resolution();
-}
-
-inline double seconds_between(std::chrono::steady_clock::time_point a, std::chrono::steady_clock::time_point b) {
-  return std::chrono::duration<double>(b - a).count();
 }
 
 }  // namespace detail

@@ -12,6 +12,7 @@
 
 #include "../io.hpp"
 #include "../detail/parallel.hpp"
+#include "../detail/timing.hpp"
 #include "../matcher.hpp"
 #include "../segment/voronoi_segmenter.hpp"
 
@@ -88,7 +89,6 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRu
 template <class GetGrid>
 MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
   using clock = std::chrono::steady_clock;
-  using seconds = std::chrono::duration<double>;
   const auto start = clock::now();
   MapPairRun run;
   double segment_s[2] = {0.0, 0.0};
@@ -100,7 +100,7 @@ MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
     const auto segment_start = clock::now();
     (source ? run.source_graph : run.dest_graph) =
         segmenter_with_door(source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
-    segment_s[i] = seconds(clock::now() - segment_start).count();
+    segment_s[i] = seconds_since(segment_start);
   });
   const auto match_start = clock::now();
   run.result = options.paper ? configured_match(PaperMatcher{}, options, run) : configured_match(Matcher<>{}, options, run);
@@ -108,12 +108,12 @@ MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
   MatchTimings& t = run.result.timings;
   t.segment_dest_s = segment_s[1];
   if (options.estimate_scale) {
-    t.match_s = seconds(end - match_start).count() - t.segment_source_s;  // segment_source_s from the match
+    t.match_s = seconds_between(match_start, end) - t.segment_source_s;  // segment_source_s from the match
   } else {
     t.segment_source_s = segment_s[0];
-    t.match_s = seconds(end - match_start).count();
+    t.match_s = seconds_between(match_start, end);
   }
-  t.total_s = seconds(end - start).count();
+  t.total_s = seconds_between(start, end);
   return run;
 }
 

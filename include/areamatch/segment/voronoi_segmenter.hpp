@@ -15,6 +15,7 @@
 /// to 1.25 m, the reference implementation's fallback).
 
 #include "../area_graph.hpp"
+#include "../detail/timing.hpp"
 #include "../image.hpp"
 #include "../grid.hpp"
 #include "../segmenter.hpp"
@@ -72,7 +73,7 @@ struct VoronoiSegmenter {
 
   SegmentationDetails segment_with_details(const OccupancyGrid& grid) const {
     using clock = std::chrono::steady_clock;
-    auto seconds = [](clock::time_point a, clock::time_point b) { return std::chrono::duration<double>(b - a).count(); };
+    const auto seconds = detail::seconds_between;
     if (grid.empty()) throw parameter_error("cannot segment an empty grid");
     if (static_cast<long long>(grid.width()) * grid.height() > max_grid_cells) {
       throw limit_error("cannot segment a grid of " + std::to_string(grid.width()) + "x" + std::to_string(grid.height()) +
@@ -105,7 +106,8 @@ struct VoronoiSegmenter {
       throw limit_error("the map's obstacle boundary has " + std::to_string(boundary.segments.size()) +
                         " segments, more than BoundaryParams::max_segments (" +
                         std::to_string(params.boundary.max_segments) +
-                        "): a very noisy map; raise the limit, or simplify more (--simplify) or erase more speckles (--speckle-area)");
+                        "): a very noisy map; raise the limit, or simplify more (BoundaryParams::simplify_tolerance_m) or "
+                        "erase more speckles (BinarizeParams::max_speckle_area_m2)");
     }
     out.refined_rings = boundary.refined_rings;
     const auto t2 = clock::now();
