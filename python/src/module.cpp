@@ -38,19 +38,18 @@ using release_gil = py::call_guard<py::gil_scoped_release>;
 am::Pose2 to_pose(const Origin& o) { return {std::get<0>(o), std::get<1>(o), std::get<2>(o)}; }
 Origin to_tuple(const am::Pose2& p) { return {p.x, p.y, p.yaw}; }
 
-py::array_t<double> points_array(const std::vector<am::Point2>& ring) {
-  py::array_t<double> out({static_cast<py::ssize_t>(ring.size()), py::ssize_t{2}});
+/// An Nx2 array of a ring's (or any range of points') x, y.
+template <class Points>
+py::array_t<double> points_array(const Points& points) {
+  py::array_t<double> out({static_cast<py::ssize_t>(points.size()), py::ssize_t{2}});
   auto view = out.mutable_unchecked<2>();
-  for (std::size_t i = 0; i < ring.size(); ++i) {
-    view(i, 0) = ring[i].x();
-    view(i, 1) = ring[i].y();
+  py::ssize_t i = 0;
+  for (const auto& p : points) {
+    view(i, 0) = p.x();
+    view(i, 1) = p.y();
+    ++i;
   }
   return out;
-}
-
-template <class Ring>
-py::array_t<double> ring_array(const Ring& ring) {
-  return points_array(std::vector<am::Point2>(ring.begin(), ring.end()));
 }
 
 py::object json_loads(const std::string& text) { return py::module_::import("json").attr("loads")(text); }
@@ -239,8 +238,7 @@ MergeRun run_merge(const DefaultMatcher& matcher, std::vector<Prepared> maps, st
     am::detail::require_positive(*resolution, "resolution");
     params.fuse.resolution = *resolution;
   }
-  if (!(wall_share > 0.0 && wall_share <= 1.0)) throw am::parameter_error("wall_share must be in (0, 1], got " + std::to_string(wall_share));
-  params.fuse.wall_share = wall_share;
+  params.fuse.wall_share = wall_share;  // checked by merge_maps (FuseParams::validate)
   params.max_residual_m = max_residual;
   params.strategy = until_connected ? am::MergeStrategy::until_connected : am::MergeStrategy::all_pairs;
   params.threads = threads;
@@ -375,21 +373,21 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("position", [](const am::Passage& p) { return Eigen::Vector2d(p.position); })
       .def_readonly("width_m", &am::Passage::width_m)
       .def_property_readonly("areas", [](const am::Passage& p) { return std::pair{p.area_a, p.area_b}; })
-      .def_property_readonly("line", [](const am::Passage& p) { return points_array({p.line.first, p.line.second}); },
+      .def_property_readonly("line", [](const am::Passage& p) { return points_array(std::vector<am::Point2>{p.line.first, p.line.second}); },
                              "2x2 array: the two wall ends across the opening");
 
   py::class_<am::Area>(m, "Area", "A room or corridor: polygon in metres, world frame.")
       .def_readonly("id", &am::Area::id)
       .def_property_readonly("kind", [](const am::Area& a) { return std::string(am::to_string(a.kind)); })
-      .def_property_readonly("polygon", [](const am::Area& a) { return ring_array(a.polygon.outer()); },
+      .def_property_readonly("polygon", [](const am::Area& a) { return points_array(a.polygon.outer()); },
                              "Nx2 array: the outer ring (closed: the last point repeats the first)")
       .def_property_readonly("holes",
                              [](const am::Area& a) {
                                std::vector<py::array_t<double>> holes;
-                               for (const auto& h : a.polygon.inners()) holes.push_back(ring_array(h));
+                               for (const auto& h : a.polygon.inners()) holes.push_back(points_array(h));
                                return holes;
                              })
-      .def_property_readonly("convex_hull", [](const am::Area& a) { return ring_array(a.convex_hull.outer()); })
+      .def_property_readonly("convex_hull", [](const am::Area& a) { return points_array(a.convex_hull.outer()); })
       .def_readonly("size_m2", &am::Area::size_m2)
       .def_property_readonly("centroid", [](const am::Area& a) { return Eigen::Vector2d(a.centroid); })
       .def_readonly("max_clearance_m", &am::Area::max_clearance_m)
