@@ -11,6 +11,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <string>
 #include <vector>
@@ -21,7 +22,8 @@ namespace {
 
 DecisionSample sample(double walls, double rooms, double margin, double overlap_m2, bool correct) {
   DecisionSample s;
-  s.features.values = {walls, walls - 0.05, rooms, margin, std::log10(margin + 0.01), std::log10(overlap_m2)};
+  s.features.values = {walls,  walls - 0.05,          rooms, margin, std::log10(margin + 0.01), std::log10(overlap_m2),
+                       margin, 0.5 * rooms};
   s.correct = correct;
   return s;
 }
@@ -185,4 +187,37 @@ TEST_CASE("the rule: agreement gate or a sure model; min_p_correct rejects whate
   Matcher<> bad;
   bad.params.decision.accept_p_correct = -0.1;
   CHECK_THROWS_WITH_AS(bad.match(robot.grid, building.layout), doctest::Contains("accept_p_correct"), parameter_error);
+}
+
+TEST_CASE("the turn margin: a right answer lies better than its own quarter turns and mirror images") {
+  // A building of rooms along a corridor: its 180° turn lays many walls on walls too, but fewer.
+  const auto building = generate_building({}, 41);
+  RobotMapParams rp;
+  rp.rotation_rad = -1.3;
+  rp.explored_fraction = 0.7;
+  const RobotMap robot = make_robot_map(building, rp, 42);
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  const MatchResult r = matcher.match(robot.grid, building.layout);
+  REQUIRE(r.ok);
+  REQUIRE(std::isfinite(r.evidence.turn_margin));
+  CHECK(r.evidence.turn_margin > 0.1);
+  CHECK(r.evidence.turn_margin <= std::max(r.evidence.forward_wall_agreement, r.evidence.reverse_wall_agreement));
+  CHECK(decision_features(r).values[6] == r.evidence.turn_margin);
+
+  // Another building's layout: the best wrong answer hardly stands out from its own turns.
+  const auto other = generate_building({}, 43);
+  const MatchResult wrong = matcher.match(robot.grid, other.layout);
+  CHECK_FALSE(wrong.ok);
+  if (std::isfinite(wrong.evidence.turn_margin)) CHECK(wrong.evidence.turn_margin < r.evidence.turn_margin);
+
+  // The paper's matching has no refinement: not measured, and the decision reads no margin.
+  PaperMatcher paper;
+  const MatchResult unmeasured = paper.match(robot.grid, building.layout);
+  CHECK(std::isnan(unmeasured.evidence.turn_margin));
+  CHECK(decision_features(unmeasured).values[6] == 0.0);
+
+  Matcher<> bad;
+  bad.params.turn_check_points = 0;
+  CHECK_THROWS_WITH_AS(bad.match(robot.grid, building.layout), doctest::Contains("turn_check_points"), parameter_error);
 }

@@ -109,6 +109,9 @@ struct MatcherParams {
   double wall_inlier_distance_m = 0.3;
   /// Passages of the two maps this close under the result count as the same (evidence only).
   double passage_distance_m = 1.0;
+  /// The answer's quarter turns and mirror images are refined on at most about this many of the
+  /// source's edge points (`MatchEvidence::turn_margin`; the answer itself used them all).
+  std::size_t turn_check_points = 500;
 
   // Decision.
   /// Transforms closer than these (rotation, and displacement of the source's free-space
@@ -175,9 +178,10 @@ struct MatcherParams {
     detail::require_positive(coarse_cell_m, "MatcherParams::coarse_cell_m");
     detail::require_positive(fine_cell_m, "MatcherParams::fine_cell_m");
     detail::require_positive(candidate_wall_distance_m, "MatcherParams::candidate_wall_distance_m");
-    if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1) {
-      throw parameter_error("MatcherParams: members_per_cluster, sparse_samples, verify_candidates and "
-                            "refine_candidates must be >= 1");
+    if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1 ||
+        turn_check_points < 1) {
+      throw parameter_error("MatcherParams: members_per_cluster, sparse_samples, verify_candidates, "
+                            "refine_candidates and turn_check_points must be >= 1");
     }
     refinement.validate();
     detail::require_positive(different_rotation_rad, "MatcherParams::different_rotation_rad");
@@ -667,6 +671,9 @@ class Matcher {
                                                 best.T, params.correspondences);
     result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
+    if (params.selection == Selection::whole_map && params.refine) {
+      measure_turn_margins(source_fine, dest_fine, edges, dest_data.wall_direction, result);
+    }
     result.ambiguous = result.confidence < params.ambiguity_margin;
     result.p_correct = p_correct(decision_features(result), params.decision);
 
@@ -858,6 +865,54 @@ class Matcher {
     Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
     for (const auto& c : raster.centres) centroid += c;
     return raster.centres.empty() ? centroid : Eigen::Vector2d(centroid / static_cast<double>(raster.centres.size()));
+  }
+
+  /// `MatchEvidence::turn_margin`: the answer against its own quarter turns about the centre of
+  /// the common part (and its mirror images about an axis along the destination's walls through
+  /// that centre, when reflection is allowed), each refined by the finalists' ICP on the
+  /// free-space edges (on fewer points) and scored by the overlap-restricted wall agreements.
+  void measure_turn_margins(const AreaRaster& source_fine, const AreaRaster& dest_fine, const detail::MapEdges& edges,
+                            double wall_direction, MatchResult& result) const {
+    const Similarity2& T = result.T_dest_source;
+    Eigen::Vector2d centre = Eigen::Vector2d::Zero();
+    std::size_t common = 0;
+    const Eigen::Affine2d to_cell = dest_fine.cell_from_world * T.affine();
+    for (const auto& c : source_fine.centres) {
+      if (dest_fine.label_at_cell(to_cell * c) < 0) continue;
+      centre += T * c;
+      ++common;
+    }
+    if (common == 0) return;
+    centre /= static_cast<double>(common);
+    auto about_centre = [&](const Eigen::Matrix2d& m) {
+      Eigen::Affine2d a = Eigen::Affine2d::Identity();
+      a.linear() = m;
+      a.translation() = centre - m * centre;
+      return Similarity2::from_affine(a);
+    };
+    auto turn = [](double angle) { return Eigen::Rotation2Dd(angle).toRotationMatrix(); };
+    std::vector<Similarity2> alternatives;
+    for (int k = 1; k < 4; ++k) alternatives.push_back(about_centre(turn(k * 0.5 * pi)) * T);
+    if (params.allow_reflection) {
+      Eigen::Matrix2d flip;
+      flip << 1.0, 0.0, 0.0, -1.0;
+      const Eigen::Matrix2d mirror = turn(wall_direction) * flip * turn(-wall_direction);
+      for (int k = 0; k < 4; ++k) alternatives.push_back(about_centre(turn(k * 0.5 * pi) * mirror) * T);
+    }
+    RefineParams refinement = params.refinement;
+    refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
+    // A rival needs only to be placed well enough to be scored: its ICP runs on fewer points.
+    std::vector<Eigen::Vector2d> points;
+    const std::size_t stride = std::max<std::size_t>(1, edges.source_points.size() / params.turn_check_points);
+    for (std::size_t i = 0; i < edges.source_points.size(); i += stride) points.push_back(edges.source_points[i]);
+    std::vector<double> walls(alternatives.size());
+    detail::for_each_index(alternatives.size(), params.threads, [&](std::size_t i) {
+      const Similarity2 refined = refine_icp(points, edges.dest_lookup, alternatives[i], refinement);
+      const auto [forward, reverse] = overlap_wall_agreements(source_fine, dest_fine, edges, refined, params.wall_inlier_distance_m);
+      walls[i] = std::max(forward, reverse);
+    });
+    const double answer = std::max(result.evidence.forward_wall_agreement, result.evidence.reverse_wall_agreement);
+    result.evidence.turn_margin = answer - *std::max_element(walls.begin(), walls.end());
   }
 
   /// Margins of the best finalist (by the finalists' score) over the best clearly different one and

@@ -15,6 +15,10 @@
 ///                            refined answers, the mirror); the log spreads the small margins
 ///                            where right and wrong answers part (0.003 against 0.1)
 ///   log_overlap              log10 of the common free space in m² (a small overlap proves little)
+///   turn_margin              `MatchEvidence::turn_margin`: how far the answer's walls stand out from
+///                            those of its own quarter turns and mirror images, each refined (in a
+///                            building of repeated rooms the wrong answer is often the right one turned)
+///   free_iou                 `MatchEvidence::free_iou`: how much of the two maps' free space is shared
 ///
 /// The coefficients are fitted by `fit_decision` (L2-regularised logistic regression, both classes
 /// weighted equally) and chosen by leave-one-building-out cross-validation over every real
@@ -37,10 +41,10 @@ namespace areamatch {
 
 /// The signals of one result that the decision reads (see the file comment).
 struct DecisionFeatures {
-  static constexpr std::size_t size = 6;
+  static constexpr std::size_t size = 8;
   std::array<double, size> values{};  ///< in the order of `names`
-  static constexpr std::array<const char*, size> names = {"walls_best", "walls_worst", "rooms",
-                                                          "margin",     "log_margin",  "log_overlap"};
+  static constexpr std::array<const char*, size> names = {"walls_best",  "walls_worst", "rooms",       "margin",
+                                                          "log_margin",  "log_overlap", "turn_margin", "free_iou"};
 };
 
 /// A logistic model p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) and the acceptance rule:
@@ -51,18 +55,19 @@ struct DecisionParams {
   /// its 596 pairs of different buildings, shared/handheld/pairs.json (with and without reflection)
   /// and its 175, 252 pairs of a shared map and a hand-held one, three generated sets of 20
   /// buildings with 760 cross pairs each, 50 generated hand-held pairs and 12 more with their 264
-  /// cross pairs (2026-12-01; the leave-one-building-out rates are in docs/evaluation.md).
-  double bias = -9.325;
-  std::array<double, DecisionFeatures::size> weights = {12.124, -0.205, 3.287, 3.224, 3.264, 0.020};  ///< `names` order
+  /// cross pairs (2026-12-02, with turn_margin and free_iou; the leave-one-building-out rates are
+  /// in docs/evaluation.md).
+  double bias = -9.215;
+  std::array<double, DecisionFeatures::size> weights = {11.492, -0.230, 2.546, 2.921,
+                                                        2.706,  -0.850, 4.827, 3.322};  ///< `names` order
   /// An answer is accepted on the model alone at or above this, even when the maps' agreement is
   /// below `MatcherParams::min_agreement`: the rule is "agreement ≥ min_agreement, or p_correct ≥
-  /// accept_p_correct". 0.9: accept what the agreement gate refuses only when the model is very
-  /// sure. Cross-validated by building this rule rejects 5 of 256 right answers and accepts 5 of
-  /// 3567 wrong ones; p_correct alone at 0.5 would accept 1.6 %, the agreement gate alone reject
-  /// 13 % of the right ones (docs/evaluation.md). Chosen from data instead (`areamatch calibrate
-  /// --choose-rule`, at most 0.2 % false accepts) the thresholds come out 0.9 and 0.84, and that
-  /// choice, cross-validated by building (nested), rejects 2.0 % and accepts 0.25 %.
-  double accept_p_correct = 0.9;
+  /// accept_p_correct". 0.8 is what `areamatch calibrate --choose-rule` chooses from data (the
+  /// fewest right answers rejected with at most 0.2 % or 0.5 % of the wrong ones accepted, judged
+  /// on leave-one-building-out predictions). Cross-validated by building the rule rejects 2 of
+  /// 256 right answers and accepts 5 of 3567 wrong ones; the whole choice, cross-validated by
+  /// building (nested), rejects 2.0 % and accepts 0.14 % (docs/evaluation.md).
+  double accept_p_correct = 0.8;
   /// Below this the answer is rejected whatever the agreement (0: off).
   double min_p_correct = 0.0;
 
@@ -86,9 +91,16 @@ inline DecisionFeatures decision_features(const MatchResult& r) {
   auto unit = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; };
   DecisionFeatures f;
   const double margin = unit(r.confidence);
+  // Not measured (the turn check needs the refinement): no sign that the answer stands out.
+  const double turn_margin = std::isfinite(e.turn_margin) ? std::clamp(e.turn_margin, -1.0, 1.0) : 0.0;
   f.values = {unit(std::max(e.forward_wall_agreement, e.reverse_wall_agreement)),
-              unit(std::min(e.forward_wall_agreement, e.reverse_wall_agreement)), unit(e.room_agreement),
-              margin, std::log10(margin + 0.01), std::log10(std::max(1.0, std::isfinite(e.overlap_m2) ? e.overlap_m2 : 1.0))};
+              unit(std::min(e.forward_wall_agreement, e.reverse_wall_agreement)),
+              unit(e.room_agreement),
+              margin,
+              std::log10(margin + 0.01),
+              std::log10(std::max(1.0, std::isfinite(e.overlap_m2) ? e.overlap_m2 : 1.0)),
+              turn_margin,
+              unit(e.free_iou)};
   return f;
 }
 

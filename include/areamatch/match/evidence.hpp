@@ -21,6 +21,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
@@ -55,6 +56,12 @@ struct MatchEvidence {
   /// layout's walls are in a SLAM map, not the SLAM map's furniture in the layout); and the more
   /// free space is shared, the surer that is.
   double agreement = 0.0;
+  /// How far the answer stands out from its own quarter turns about the common part's centre
+  /// (and, with reflection allowed, its mirror images), each refined by ICP as the answer was:
+  /// the answer's better overlap-restricted wall agreement minus the best alternative's. In a
+  /// building of repeated rooms a wrong answer is often the right one turned; two different
+  /// buildings agree about as badly in every turn. NaN when not measured.
+  double turn_margin = std::numeric_limits<double>::quiet_NaN();
 };
 
 namespace detail {
@@ -103,6 +110,23 @@ inline std::vector<Eigen::Vector2d> without_frontiers(const OccupancyGrid& grid,
 
 }  // namespace detail
 
+/// `MatchEvidence::forward_wall_agreement` and `reverse_wall_agreement` alone: each map's walls
+/// near the other's free space that lie on the other's free-space edge.
+inline std::pair<double, double> overlap_wall_agreements(const AreaRaster& source_raster, const AreaRaster& dest_raster,
+                                                         const detail::MapEdges& edges, const Similarity2& T_dest_source,
+                                                         double wall_inlier_distance_m) {
+  auto shared_walls = [&](const std::vector<Eigen::Vector2d>& walls, const AreaRaster& other, const Similarity2& T,
+                          const BoundaryLookup& other_edge) {
+    std::vector<Eigen::Vector2d> near;
+    for (const auto& q : walls) {
+      if (detail::near_labelled(other, T * q)) near.push_back(q);
+    }
+    return boundary_inlier_fraction(near, other_edge, T, wall_inlier_distance_m);
+  };
+  return {shared_walls(edges.source_walls, dest_raster, T_dest_source, edges.dest_lookup),
+          shared_walls(edges.dest_walls, source_raster, T_dest_source.inverse(), edges.source_lookup)};
+}
+
 /// The measures of `MatchEvidence` for T_dest_source, from both maps' edges (world metres) and
 /// area rasters of one cell size.
 inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& dest, const AreaRaster& source_raster,
@@ -113,17 +137,9 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   const Similarity2 T_source_dest = T_dest_source.inverse();
   e.wall_agreement = boundary_inlier_fraction(edges.source_points, edges.dest_lookup, T_dest_source, wall_inlier_distance_m);
 
-  // One map's walls where the other has free space nearby: on the other's edge?
-  auto shared_walls = [&](const std::vector<Eigen::Vector2d>& walls, const AreaRaster& other, const Similarity2& T,
-                          const BoundaryLookup& other_edge) {
-    std::vector<Eigen::Vector2d> near;
-    for (const auto& q : walls) {
-      if (detail::near_labelled(other, T * q)) near.push_back(q);
-    }
-    return boundary_inlier_fraction(near, other_edge, T, wall_inlier_distance_m);
-  };
-  e.reverse_wall_agreement = shared_walls(edges.dest_walls, source_raster, T_source_dest, edges.source_lookup);
-  e.forward_wall_agreement = shared_walls(edges.source_walls, dest_raster, T_dest_source, edges.dest_lookup);
+  const auto [forward, reverse] = overlap_wall_agreements(source_raster, dest_raster, edges, T_dest_source, wall_inlier_distance_m);
+  e.forward_wall_agreement = forward;
+  e.reverse_wall_agreement = reverse;
 
   // Cell overlaps per area pair, from the source cells.
   const std::size_t ns = source.areas.size(), nd = dest.areas.size();
