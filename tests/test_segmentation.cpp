@@ -155,6 +155,7 @@ TEST_CASE("boundary segments satisfy Boost.Polygon's contract on nasty shapes") 
   }
 }
 
+#if AREAMATCH_FAST_VORONOI_CIRCLES  // our circle events against Boost's, where they are compiled in
 TEST_CASE("corner circle events agree with Boost's own (exact when needed) computation") {
   // detail::endpoint_circle and endpoint_circle_two_points replace Boost's circle events when a
   // point site is an endpoint of a segment site; Boost accepts 64 ulps before it recomputes in
@@ -299,6 +300,7 @@ TEST_CASE("general circle events agree with Boost's own (exact when needed) on r
   CHECK(comparison.point_segment_segment > 1000);
   CHECK(comparison.three_segments > 1000);
 }
+#endif  // AREAMATCH_FAST_VORONOI_CIRCLES
 
 TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram") {
   // The same edges as boost::polygon::construct_voronoi on wall outlines (random rooms with
@@ -337,6 +339,31 @@ TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram")
     INFO("trial " << trial);
     CHECK(ours.vertices().size() == theirs.vertices().size());
     CHECK(edges_of(ours) == edges_of(theirs));
+  }
+}
+
+TEST_CASE("segmentation is the same with Boost's stock Voronoi builder") {
+  // SkeletonParams::fast_circle_events off: boost::polygon::construct_voronoi, as on a Boost
+  // version the faster circle events are not compiled for (AREAMATCH_FAST_VORONOI_CIRCLES).
+  for (std::uint64_t seed = 1; seed <= 4; ++seed) {
+    const auto building = generate_building({}, seed);
+    RobotMapParams rp;
+    rp.rotation_rad = 0.3 * static_cast<double>(seed);
+    rp.max_clutter_per_room = 3;
+    const RobotMap robot = make_robot_map(building, rp, seed + 10);
+    for (const OccupancyGrid* grid : {&building.layout, &robot.grid}) {
+      VoronoiSegmenter fast, stock;
+      stock.params.skeleton.fast_circle_events = false;
+      const AreaGraph a = fast.segment(*grid), b = stock.segment(*grid);
+      INFO("seed " << seed);
+      CHECK(a.labels == b.labels);
+      REQUIRE(a.passages.size() == b.passages.size());
+      // Circle events within a few ulps of Boost's: the same passages up to the last bits.
+      for (std::size_t i = 0; i < a.passages.size(); ++i) {
+        CHECK((a.passages[i].position - b.passages[i].position).norm() < 1e-9);
+        CHECK(a.passages[i].width_m == doctest::Approx(b.passages[i].width_m).epsilon(1e-9));
+      }
+    }
   }
 }
 

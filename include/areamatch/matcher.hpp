@@ -626,14 +626,17 @@ class Matcher {
     // any thread count.
     const std::vector<bool> side_list = sides();
     std::vector<std::vector<Hypothesis>> per_job(side_list.size() * pairs.size());
+    std::vector<std::size_t> overlay_failures(per_job.size(), 0);
     detail::for_each_index(per_job.size(), params.threads, [&](std::size_t job) {
       const AreaPair& pair = pairs[job % pairs.size()];
       const auto segments = features.segments(source_descriptors, dest_descriptors, static_cast<std::size_t>(pair.source),
                                               static_cast<std::size_t>(pair.dest));
-      add_pair_hypotheses(inputs, pair, segments, side_list[job / pairs.size()], params.hypotheses, per_job[job]);
+      add_pair_hypotheses(inputs, pair, segments, side_list[job / pairs.size()], params.hypotheses, per_job[job],
+                          &overlay_failures[job]);
     });
     std::vector<Hypothesis> hypotheses;
     for (auto& list : per_job) hypotheses.insert(hypotheses.end(), list.begin(), list.end());
+    for (std::size_t failures : overlay_failures) result.statistics.overlay_failures += failures;
     result.statistics.hypotheses = hypotheses.size();
     result.timings.hypotheses_s = detail::seconds_since(stage);
     if (hypotheses.empty()) {
@@ -722,7 +725,9 @@ class Matcher {
                                                               MatchResult& result) const {
     auto total_overlap = [&](const Similarity2& T) {
       double sum = 0.0;
-      for (const AreaPair& pair : pairs) sum += pair_overlap(inputs, pair, params.hypotheses.exact_overlap, T);
+      for (const AreaPair& pair : pairs) {
+        sum += pair_overlap(inputs, pair, params.hypotheses.exact_overlap, T, &result.statistics.overlay_failures);
+      }
       return sum;
     };
     std::vector<detail::ScoredTransform> chosen;   // the best of each side's largest cluster

@@ -29,6 +29,20 @@
 /// there is exactly one circle; tests compare both computations on random walls.)
 
 #include <boost/polygon/voronoi.hpp>
+#include <boost/version.hpp>
+
+/// Whether the faster circle events are compiled in. They subclass Boost.Polygon's internal
+/// predicates (`boost::polygon::detail::voronoi_predicates`), which are not public API: used on
+/// the Boost versions whose internals they were written against (tested on 1.81; the predicates'
+/// interface is unchanged since Boost 1.52), otherwise the stock builder runs. Define
+/// AREAMATCH_FAST_VORONOI_CIRCLES to 0 to force the stock builder, to 1 to force ours.
+#ifndef AREAMATCH_FAST_VORONOI_CIRCLES
+#if BOOST_VERSION >= 107400 && BOOST_VERSION < 109000
+#define AREAMATCH_FAST_VORONOI_CIRCLES 1
+#else
+#define AREAMATCH_FAST_VORONOI_CIRCLES 0
+#endif
+#endif
 
 #include <algorithm>
 #include <cmath>
@@ -39,6 +53,7 @@
 
 namespace areamatch::detail {
 
+#if AREAMATCH_FAST_VORONOI_CIRCLES
 namespace bpd = boost::polygon::detail;
 /// Boost.Polygon's default predicates for int32 input, which the functors below fall back to.
 using BoostVoronoiPredicates = bpd::voronoi_predicates<bpd::voronoi_ctype_traits<bpd::int32>>;
@@ -311,12 +326,23 @@ struct EndpointCirclePredicates : BoostVoronoiPredicates {
       Site, Circle, typename BoostVoronoiPredicates::template circle_existence_predicate<Site>, EndpointCircleFormation<Site, Circle>>;
 };
 
-/// `boost::polygon::construct_voronoi` for segments, with the faster circle events.
+#endif  // AREAMATCH_FAST_VORONOI_CIRCLES
+
+/// `boost::polygon::construct_voronoi` for segments, with the faster circle events when
+/// `fast_circles` and they are compiled in (the same diagram either way, vertices equal up to a
+/// few ulps; tests compare them).
 template <class SegmentIterator, class Diagram>
-void construct_segment_voronoi(SegmentIterator first, SegmentIterator last, Diagram* diagram) {
-  boost::polygon::voronoi_builder<bpd::int32, bpd::voronoi_ctype_traits<bpd::int32>, EndpointCirclePredicates> builder;
-  boost::polygon::insert(first, last, &builder);
-  builder.construct(diagram);
+void construct_segment_voronoi(SegmentIterator first, SegmentIterator last, Diagram* diagram, bool fast_circles = true) {
+#if AREAMATCH_FAST_VORONOI_CIRCLES
+  if (fast_circles) {
+    boost::polygon::voronoi_builder<bpd::int32, bpd::voronoi_ctype_traits<bpd::int32>, EndpointCirclePredicates> builder;
+    boost::polygon::insert(first, last, &builder);
+    builder.construct(diagram);
+    return;
+  }
+#endif
+  (void)fast_circles;
+  boost::polygon::construct_voronoi(first, last, diagram);
 }
 
 }  // namespace areamatch::detail

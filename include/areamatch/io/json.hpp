@@ -130,7 +130,8 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"dest_areas\": " + std::to_string(s.dest_areas) + ", \"mutual_pairs\": " + std::to_string(s.mutual_pairs) +
          ", \"hypotheses\": " + std::to_string(s.hypotheses) + ", \"clusters\": " + std::to_string(s.clusters) +
          ", \"verified\": " + std::to_string(s.verified) + ", \"refined\": " + std::to_string(s.refined) +
-         ", \"scales_tried\": " + std::to_string(s.scales_tried) + "}";
+         ", \"scales_tried\": " + std::to_string(s.scales_tried) + ", \"overlay_failures\": " +
+         std::to_string(s.overlay_failures) + "}";
   const MatchTimings& t = r.timings;
   out += ", \"timings\": {\"segment_source_s\": " + json_number(t.segment_source_s) +
          ", \"segment_dest_s\": " + json_number(t.segment_dest_s) + ", \"match_s\": " + json_number(t.match_s) +

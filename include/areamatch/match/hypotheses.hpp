@@ -121,8 +121,9 @@ inline Polygon2 transformed(const Polygon2& polygon, const Similarity2& T) {
   return out;
 }
 
-/// OP = area(T(P_i) ∩ P_j) / min(a_i, a_j) with Boost.Geometry, after an envelope check.
-inline double exact_area_overlap(const Area& source, const Area& dest, const Similarity2& T) {
+/// OP = area(T(P_i) ∩ P_j) / min(a_i, a_j) with Boost.Geometry, after an envelope check; none
+/// when Boost.Geometry cannot overlay the two polygons (it throws on some degenerate inputs).
+inline std::optional<double> exact_area_overlap(const Area& source, const Area& dest, const Similarity2& T) {
   const double denominator = std::min(bg::area(source.polygon), bg::area(dest.polygon));
   if (!(denominator > 0.0)) return 0.0;
   const Polygon2 moved = transformed(source.polygon, T);
@@ -131,7 +132,7 @@ inline double exact_area_overlap(const Area& source, const Area& dest, const Sim
   try {
     bg::intersection(moved, dest.polygon, intersection);
   } catch (const bg::exception&) {
-    return 0.0;  // a degenerate overlay; the pair then simply gives no evidence
+    return std::nullopt;
   }
   return std::min(1.0, bg::area(intersection) / denominator);
 }
@@ -193,23 +194,29 @@ struct HypothesisInputs {
 };
 
 /// The pair's overlap percentage OP under T: exact (Boost.Geometry, the paper's) or counted on
-/// the rasters.
-inline double pair_overlap(const HypothesisInputs& in, const AreaPair& pair, bool exact, const Similarity2& T) {
+/// the rasters. Where the exact overlay fails the raster overlap stands in, and
+/// `*overlay_failures` (when given) counts it (`MatchStatistics::overlay_failures`).
+inline double pair_overlap(const HypothesisInputs& in, const AreaPair& pair, bool exact, const Similarity2& T,
+                           std::size_t* overlay_failures = nullptr) {
   const Area& source_area = in.source->areas[static_cast<std::size_t>(pair.source)];
   const Area& dest_area = in.dest->areas[static_cast<std::size_t>(pair.dest)];
-  return exact ? detail::exact_area_overlap(source_area, dest_area, T)
-               : raster_area_overlap(*in.source_raster, *in.dest_raster, pair.source, pair.dest, source_area.size_m2,
-                                     dest_area.size_m2, T);
+  if (exact) {
+    if (const std::optional<double> op = detail::exact_area_overlap(source_area, dest_area, T)) return *op;
+    if (overlay_failures) ++*overlay_failures;
+  }
+  return raster_area_overlap(*in.source_raster, *in.dest_raster, pair.source, pair.dest, source_area.size_m2,
+                             dest_area.size_m2, T);
 }
 
 /// Hypotheses of one pair on one side of the mirror, appended to `out` when their overlap
 /// passes. `segments` is the pair's segment evidence in feature order.
 inline void add_pair_hypotheses(const HypothesisInputs& in, const AreaPair& pair,
                                 const std::vector<SegmentMatch>& segments, bool reflected,
-                                const HypothesisParams& params, std::vector<Hypothesis>& out) {
+                                const HypothesisParams& params, std::vector<Hypothesis>& out,
+                                std::size_t* overlay_failures = nullptr) {
   const Area& source_area = in.source->areas[static_cast<std::size_t>(pair.source)];
   const Area& dest_area = in.dest->areas[static_cast<std::size_t>(pair.dest)];
-  auto overlap = [&](const Similarity2& T) { return pair_overlap(in, pair, params.exact_overlap, T); };
+  auto overlap = [&](const Similarity2& T) { return pair_overlap(in, pair, params.exact_overlap, T, overlay_failures); };
   auto emit = [&](const Similarity2& T, HypothesisOrigin origin) {
     Hypothesis h;
     h.T_dest_source = T;

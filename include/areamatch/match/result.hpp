@@ -55,6 +55,9 @@ struct MatchStatistics {
   std::size_t verified = 0;    ///< candidates scored on the whole map
   std::size_t refined = 0;
   std::size_t scales_tried = 0;  ///< source scales matched (`estimate_scale`), else 0
+  /// Exact area overlaps (`HypothesisParams::exact_overlap`, the paper's) that Boost.Geometry could
+  /// not compute (a degenerate overlay); the raster overlap stood in for each.
+  std::size_t overlay_failures = 0;
 };
 
 struct MatchResult {

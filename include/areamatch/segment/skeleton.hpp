@@ -79,6 +79,12 @@ struct SkeletonParams {
   /// A dead end whose clearance reaches this is a room, never a spur. `VoronoiSegmenter` sets it
   /// from the door width (`detail::room_clearance_m`, the threshold `detect_rooms` uses).
   double keep_clearance_m = 0.625;
+  /// Compute the Voronoi diagram's corner circle events without multiprecision where that is
+  /// provably as accurate (detail/voronoi_circles.hpp: about half the diagram's time); false:
+  /// Boost's stock builder. The same diagram either way, up to rounding in the last bits of the
+  /// vertices (the same areas; passages within 1e-9 m: tested). Without effect where the faster events
+  /// are not compiled in (`AREAMATCH_FAST_VORONOI_CIRCLES`, set from the Boost version).
+  bool fast_circle_events = true;
 
   void validate() const {
     detail::require_non_negative(min_clearance_m, "SkeletonParams::min_clearance_m");
@@ -167,7 +173,8 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   bp::voronoi_diagram<double> diagram;
   // Boost.Polygon's builder, with corner circle events computed without multiprecision when
   // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
-  detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram);
+  detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram,
+                                    params.fast_circle_events);
 
   auto is_free_at = [&](double x, double y) {
     return space.is_free(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
