@@ -8,6 +8,7 @@
 
 #include "test_support.hpp"
 
+#include <chrono>
 #include <cmath>
 #include <limits>
 #include <string>
@@ -104,9 +105,18 @@ TEST_CASE("a map against one 100 times its area: an answer or a clear refusal, i
   large.height_m = 50;
   const auto a = generate_building(small, 5), b = generate_building(large, 5);
   for (const auto& [source, dest] : {std::pair{&a.layout, &b.layout}, std::pair{&b.layout, &a.layout}}) {
+    const auto start = std::chrono::steady_clock::now();
     const MatchResult r = Matcher<>{}.match(*source, *dest);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     CHECK((r.ok || !r.reason.empty()));
     if (r.ok) CHECK(std::isfinite(r.score));
+    // A guard against runaway work (the work is bounded by the areas: a few hundred
+    // hypotheses per area pair), not a speed target: it takes well under a second in Release.
+    MESSAGE("matched in " << seconds << " s: " << r.statistics.hypotheses << " hypotheses, " << r.statistics.clusters
+                          << " clusters");
+    CHECK(seconds < (areamatch_test::quick_tests() ? 120.0 : 30.0));
+    CHECK(r.statistics.verified <= Matcher<>{}.params.verify_candidates);
+    CHECK(r.statistics.refined <= Matcher<>{}.params.refine_candidates + 1);
   }
 }
 

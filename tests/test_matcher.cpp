@@ -1,6 +1,7 @@
 // The matcher on synthetic pairs (a fixed set of 100 seeds: every rotation, translation, noise,
 // clutter, partial exploration, mirrors), its determinism, its policies and its bad inputs.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/detail/random.hpp>
 #include <areamatch/evaluation.hpp>
 #include <areamatch/io/json.hpp>
 
@@ -10,6 +11,8 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -107,15 +110,45 @@ TEST_CASE("a map matched against itself gives the identity") {
   CHECK(r.matched_areas.size() == r.statistics.source_areas);
 }
 
-TEST_CASE("the paper preset runs and answers on a clean pair") {
-  const auto building = generate_building({}, 5);
+TEST_CASE("the paper preset: right on a pair it can get, a half turn where the whole map is needed") {
+  // The paper's matching as written loses most real pairs to half turns and mirrors
+  // (docs/evaluation.md, ALGORITHM.md §7). This small mirrored pair (`areamatch generate --seed 5
+  // --width 20 --height 14 --rotation 75 --mirror`) it gets right...
+  BuildingParams small;
+  small.width_m = 20;
+  small.height_m = 14;
+  const auto building = generate_building(small, 5);
   RobotMapParams params;
-  params.rotation_rad = 0.6;
+  params.rotation_rad = 75.0 * pi / 180.0;
+  params.mirror = true;
+  params.wall_noise_m = 0.03;
+  params.max_clutter_per_room = 3;
+  params.speckle_per_m2 = 0.02;
   const auto robot = make_robot_map(building, params, 5);
-  const MatchResult r = PaperMatcher{}.match(robot.grid, building.layout);
+  MatcherParams paper = MatcherParams::paper();
+  paper.allow_reflection = true;
+  const MatchResult r = PaperMatcher{paper}.match(robot.grid, building.layout);
   CHECK(r.statistics.mutual_pairs > 0);
-  CHECK(r.timings.match_s >= 0.0);
-  if (r.ok) CHECK(std::isfinite(r.T_dest_source.rotation));
+  REQUIRE(r.ok);
+  const MatchError e = match_error(r.pixel_transform, robot.pixel_transform, free_edge_pixels(robot.grid),
+                                   building.layout.resolution());
+  INFO("rotation error " << e.rotation_error_deg << " deg, displacement " << e.mean_displacement_m << " m");
+  CHECK(e.correct({3.0, 0.5}));
+  CHECK(std::isnan(r.evidence.turn_margin));  // no refinement, no turn check
+
+  // ... while on a clean 30 x 20 m building its Σ OP prefers the half turn, which our default
+  // selection (the whole map's walls) does not.
+  const auto larger = generate_building({}, 5);
+  RobotMapParams turned;
+  turned.rotation_rad = 0.6;
+  const auto clean = make_robot_map(larger, turned, 5);
+  const MatchResult half = PaperMatcher{}.match(clean.grid, larger.layout);
+  const MatchResult ours = Matcher<>{}.match(clean.grid, larger.layout);
+  const auto edges = free_edge_pixels(clean.grid);
+  const double resolution = larger.layout.resolution();
+  CHECK(match_error(half.pixel_transform, clean.pixel_transform, edges, resolution).rotation_error_deg > 170.0);
+  REQUIRE(ours.ok);
+  CHECK(match_error(ours.pixel_transform, clean.pixel_transform, edges, resolution).correct({3.0, 0.5}));
 }
 
 TEST_CASE("maps without areas give a clear not-ok result, never a crash") {
@@ -130,14 +163,24 @@ TEST_CASE("maps without areas give a clear not-ok result, never a crash") {
   }
 }
 
-TEST_CASE("one-area maps and maps without passages: an answer or a clear refusal") {
+TEST_CASE("one-area maps and maps without passages: the room onto itself, its half turn flagged") {
   const OccupancyGrid a = rectangle_room(6.0, 4.0), b = rectangle_room(6.0, 4.0);
   const MatchResult r = Matcher<>{}.match(a, b);
   CHECK(r.statistics.source_areas == 1);
-  if (r.ok) CHECK(std::isfinite(r.score));
-  else CHECK_FALSE(r.reason.empty());
-  const MatchResult p = PaperMatcher{}.match(a, rectangle_room(3.0, 9.0));
-  if (!p.ok) CHECK_FALSE(p.reason.empty());
+  // A bare rectangle lies on itself as well turned by 180°: either is right, and the result
+  // must say that the other scores as well.
+  REQUIRE(r.ok);
+  const double turn = std::abs(wrap_angle(r.T_dest_source.rotation));
+  CHECK((turn < 0.01 || std::abs(turn - pi) < 0.01));
+  CHECK(r.score > 0.95);
+  CHECK(r.ambiguous);
+  CHECK(r.evidence.turn_margin < 0.05);
+  // The paper's preset has no rejection rule: it lays a 6 x 4 m room on a 3 x 9 m one, centred.
+  const OccupancyGrid c = rectangle_room(3.0, 9.0);
+  const MatchResult p = PaperMatcher{}.match(a, c);
+  REQUIRE(p.ok);
+  const Eigen::Vector2d a_centre(3.1, 2.1), c_centre(1.6, 4.6);  // two border cells of wall around each
+  CHECK((p.T_dest_source * a_centre - c_centre).norm() < 0.5);
 }
 
 TEST_CASE("maps of different buildings do not crash and score lower than the true pair") {
@@ -534,4 +577,48 @@ TEST_CASE("prepared maps: the same results as matching the grids, bit for bit; a
   const MatchResult none = matcher.match(source, empty);
   CHECK_FALSE(none.ok);
   CHECK(none.reason.find("no areas") != std::string::npos);
+}
+
+TEST_CASE("the raster overlap estimates the exact polygon overlap (the paper's OP)") {
+  // The default hypotheses filter on OP counted on 0.25 m rasters from at most 128 cells
+  // (raster_area_overlap); the paper's preset intersects the polygons with Boost.Geometry
+  // (exact_area_overlap). Same areas, same transforms: the estimate must follow the exact value.
+  const auto building = generate_building({}, 8);
+  const AreaGraph graph = VoronoiSegmenter{}.segment(building.layout);
+  REQUIRE(graph.areas.size() > 5);
+  const AreaRaster raster = make_area_raster(graph, MatcherParams{}.coarse_cell_m);
+  detail::Random random(9);
+  double worst = 0.0, total = 0.0;
+  int compared = 0, filter_disagreements = 0;
+  for (int trial = 0; trial < 20; ++trial) {
+    Similarity2 T;
+    T.rotation = random.uniform(-0.1, 0.1);
+    T.translation = Eigen::Vector2d(random.uniform(-1.5, 1.5), random.uniform(-1.5, 1.5));
+    for (std::size_t i = 0; i < graph.areas.size(); ++i) {
+      for (std::size_t j = 0; j < graph.areas.size(); ++j) {
+        const std::optional<double> exact = detail::exact_area_overlap(graph.areas[i], graph.areas[j], T);
+        REQUIRE(exact.has_value());
+        const double estimate = raster_area_overlap(raster, raster, static_cast<int>(i), static_cast<int>(j),
+                                                    graph.areas[i].size_m2, graph.areas[j].size_m2, T);
+        if (*exact == 0.0 && estimate == 0.0) continue;
+        const double error = std::abs(estimate - *exact);
+        worst = std::max(worst, error);
+        total += error;
+        ++compared;
+        // Where it matters, at the filter's 0.5, the two must not disagree by much.
+        if (std::abs(*exact - 0.5) > 0.1) filter_disagreements += (estimate >= 0.5) != (*exact >= 0.5);
+      }
+    }
+  }
+  REQUIRE(compared > 100);
+  MESSAGE(compared << " overlapping area pairs: mean error " << total / compared << ", worst " << worst
+                   << "; filter decisions differing away from 0.5: " << filter_disagreements);
+  // Measured: mean 0.027; the worst, up to 0.29, are a large corridor (1235 cells) against a
+  // small room: 128 evenly spread corridor cells, of which only ~10 land in the room. Sampling
+  // the smaller of the two areas would fix that (a known weakness; it would change the default
+  // matcher's hypotheses, so it waits for a recalibration). Two of the 1058 filter decisions
+  // away from 0.5 differ.
+  CHECK(total / compared < 0.05);
+  CHECK(worst < 0.35);
+  CHECK(filter_disagreements <= compared / 100);
 }
