@@ -2,8 +2,8 @@
 # Builds the tests and the program with AddressSanitizer + UndefinedBehaviorSanitizer (Debug,
 # -O1, frame pointers kept, every UB report fatal) into build-sanitize/ and runs the test suite
 # there, including the replay of the fuzz corpus. Any sanitizer report fails the run. The
-# packaging and benchmark tests and the examples are left to scripts/test.sh: they test the
-# install, speed and the README, not memory safety.
+# packaging, benchmark and compile-fail tests and the examples are left to scripts/test.sh: they
+# test the install, speed, the compiler's messages and the README, not memory safety.
 #   scripts/sanitize.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -15,4 +15,4 @@ export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # (AREAMATCH_QUICK_TESTS), and the tests on the full-size real maps are left to the Release run.
 export AREAMATCH_QUICK_TESTS=1
 cd "$build_dir"
-ctest --output-on-failure -j "$(nproc)" -LE "packaging|benchmark|shared" --timeout 1500
+ctest --output-on-failure -j "$(nproc)" -LE "packaging|benchmark|shared|compile_fail" --timeout 1500

@@ -470,6 +470,57 @@ TEST_CASE("features and pairing follow the paper's formulas") {
   CHECK(mutual_nearest_pairs(cost, 3).size() == 9);
 }
 
+TEST_CASE("pose clustering: its binned leader search gives exactly a linear scan's clusters") {
+  // PoseClusterer compares each hypothesis only with the leaders in neighbouring (rotation,
+  // translation) bins; a linear scan compares it with every leader, earliest first. Clumps of
+  // near-duplicates around a few poses (as many area pairs give), across the ±π seam and both
+  // sides of the mirror, with tolerances and bin edges in between.
+  detail::Random random(17);
+  std::vector<Hypothesis> hypotheses;
+  for (int centre = 0; centre < 30; ++centre) {
+    const double rotation = random.uniform(-pi, pi);
+    const Eigen::Vector2d translation(random.uniform(-20.0, 20.0), random.uniform(-20.0, 20.0));
+    const bool reflected = random.uniform() < 0.3;
+    for (int k = random.integer(1, 40); k > 0; --k) {
+      Hypothesis h;
+      h.T_dest_source.rotation = wrap_angle(rotation + random.uniform(-0.1, 0.1));
+      h.T_dest_source.translation = translation + Eigen::Vector2d(random.uniform(-1.5, 1.5), random.uniform(-1.5, 1.5));
+      h.T_dest_source.reflected = reflected;
+      h.area_overlap = std::round(random.uniform(0.5, 1.0) * 20.0) / 20.0;  // ties, broken by cost
+      h.pair_cost = random.uniform();
+      hypotheses.push_back(h);
+    }
+  }
+  for (const auto& [rotation, translation] : {std::pair{3.0 * pi / 180.0, 1.0}, std::pair{0.05, 0.3}, std::pair{2.5, 4.0}}) {
+    PoseClusterer clusterer;
+    clusterer.params.rotation_rad = rotation;
+    clusterer.params.translation_m = translation;
+    const std::vector<Cluster> binned = clusterer.cluster(hypotheses);
+
+    const std::vector<int> order = detail::by_overlap(hypotheses);
+    std::vector<Cluster> linear;
+    for (int i : order) {
+      const Similarity2& T = hypotheses[static_cast<std::size_t>(i)].T_dest_source;
+      auto joins = [&](const Cluster& c) {
+        const Similarity2& L = hypotheses[static_cast<std::size_t>(c.members.front())].T_dest_source;
+        return L.reflected == T.reflected && std::abs(wrap_angle(L.rotation - T.rotation)) <= rotation &&
+               (L.translation - T.translation).norm() <= translation;
+      };
+      const auto it = std::find_if(linear.begin(), linear.end(), joins);
+      if (it == linear.end()) linear.push_back({{i}, T.rotation, 0.0});
+      else it->members.push_back(i);
+    }
+    detail::finish_clusters(hypotheses, order, linear);
+    std::stable_sort(linear.begin(), linear.end(), [](const Cluster& a, const Cluster& b) { return a.total_overlap > b.total_overlap; });
+
+    INFO("tolerances " << rotation << " rad, " << translation << " m: " << binned.size() << " clusters");
+    REQUIRE(binned.size() == linear.size());
+    CHECK(binned.size() > 1);
+    CHECK(binned.size() < hypotheses.size());
+    for (std::size_t c = 0; c < binned.size(); ++c) CHECK(binned[c].members == linear[c].members);
+  }
+}
+
 TEST_CASE("angular clustering does not depend on the hypotheses' order") {
   std::vector<Hypothesis> hypotheses;
   for (double degrees : {10.0, 11.0, 12.5, 100.0, 101.0, -179.0, 179.5, 10.5}) {

@@ -55,6 +55,7 @@
 #include <optional>
 #include <string>
 #include <utility>
+#include <tuple>
 #include <vector>
 
 namespace areamatch {
@@ -233,6 +234,20 @@ struct MapDataKey {
   }
 };
 
+/// A FeatureSet's size and per-area descriptors; for any other type none, so that a Matcher
+/// given something else reports its one static_assert, not a cascade of follow-on errors.
+template <class Features>
+struct feature_set_traits {
+  static constexpr std::size_t size = 0;
+  using descriptors = std::tuple<>;
+};
+template <class... F>
+struct feature_set_traits<FeatureSet<F...>> {
+  static constexpr std::size_t size = sizeof...(F);
+  using descriptors =
+      std::decay_t<decltype(std::declval<const FeatureSet<F...>&>().describe(std::declval<const AreaGraph&>()))>;
+};
+
 
 }  // namespace detail
 
@@ -245,7 +260,7 @@ class Matcher {
   static_assert(is_feature_set<Features>::value,
                 "areamatch::Matcher: the Features policy must be an areamatch::FeatureSet<F1, F2, ...> of feature "
                 "policies (see match/features.hpp)");
-  static_assert(is_weights_v<Weights, Features::size>,
+  static_assert(!is_feature_set<Features>::value || is_weights_v<Weights, detail::feature_set_traits<Features>::size>,
                 "areamatch::Matcher: the Weights policy needs a member `std::array<double, N> values` with one "
                 "weight per feature of the FeatureSet, in its order (see match/costs.hpp)");
   static_assert(is_clusterer_v<Clusterer>,
@@ -266,8 +281,7 @@ class Matcher {
         params(std::move(p)) {}
 
   /// The Features policy's per-area descriptors.
-  using Descriptors =
-      std::decay_t<decltype(std::declval<const Features&>().describe(std::declval<const AreaGraph&>()))>;
+  using Descriptors = typename detail::feature_set_traits<Features>::descriptors;
 
  private:
   /// One map as matching reads it; `data` null: built for this match.
