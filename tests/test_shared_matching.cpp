@@ -275,3 +275,29 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
   CHECK(false_rejects * 100 <= right * 5);
   CHECK(false_accepts * 100 <= wrong * 2);
 }
+
+TEST_CASE("merging the F5 floor with a scan of each apartment: the floor placed, the apartments not") {
+  // A merge tries every pair, so one falsely accepted match would place a map of another place:
+  // KPT4A_02 has exactly one accepted match here (onto F5_07, accepted by the model alone at
+  // p_correct 0.81), which MergeParams::lone_match_min_p_correct keeps out (docs/merging.md).
+  const std::string shared = areamatch_test::shared_dir();
+  if (shared.empty()) return;
+  const std::string dir = shared + "/handheld/maps/";
+  if (!areamatch_test::is_dir(dir)) {
+    MESSAGE("skipped: no shared/handheld");
+    return;
+  }
+  std::vector<std::string> names = {"F5_layout"};
+  for (int i = 1; i <= 14; ++i) names.push_back(std::string(i < 10 ? "F5_0" : "F5_") + std::to_string(i));
+  names.push_back("HIH_01");
+  names.push_back("KPT4A_02");
+  Matcher<> matcher;
+  matcher.segmenter.params.with_door_width(0.9);
+  std::vector<Matcher<>::PreparedMap> maps;
+  for (const auto& name : names) maps.push_back(matcher.prepare(load_map(dir + name + ".yaml")));
+  const MergeResult merged = merge_maps(matcher, maps);
+  for (std::size_t i = 0; i < names.size(); ++i) {
+    INFO(names[i] << ": " << merged.maps[i].reason);
+    CHECK(merged.maps[i].placed == (i < 15));
+  }
+}

@@ -64,6 +64,13 @@ struct MergeParams {
   /// bending hand-held scans (0.1–0.5 m, their ground truth itself is good to ~0.3 m) and below
   /// the smallest wrong answer that matters, a slide by one room (≥ 2.5 m).
   double max_residual_m = 1.0;
+  /// A map joined to the others by one accepted match only, and that accepted by the calibrated
+  /// model alone (agreement below `MatcherParams::min_agreement`), must reach this p_correct:
+  /// nothing else corroborates it, and a merge tries every pair, so one false accept would place
+  /// a map of another building. 0.9: the model-alone threshold of the decision until 2026-12-01
+  /// (its cross-validated false accepts 5 of 3567). In the F5 merge every scan has at least five
+  /// accepted matches; an apartment scan added to it had one, at 0.814 (docs/merging.md).
+  double lone_match_min_p_correct = 0.9;
   /// How the merged grid is made (its resolution: the finest map's by default).
   FuseParams fuse;
   /// Threads matching pairs at once (`all_pairs` only; 0: one per hardware thread). The results
@@ -81,6 +88,9 @@ struct MergeParams {
                             std::to_string(map_count) + " maps");
     }
     detail::require_positive(max_residual_m, "MergeParams::max_residual_m");
+    if (!(lone_match_min_p_correct >= 0.0 && lone_match_min_p_correct <= 1.0)) {
+      throw parameter_error("MergeParams::lone_match_min_p_correct must be in [0, 1]");
+    }
     if (!names.empty() && names.size() != map_count) throw parameter_error("MergeParams::names: one name per map, or none");
     fuse.validate();
   }
@@ -224,6 +234,27 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   for (auto& edge : result.edges) {
     if (!edge.match.ok) edge.note = "rejected: " + edge.match.reason;
   }
+  // A lone match accepted by the model alone below lone_match_min_p_correct is not trusted.
+  std::vector<std::size_t> accepted_matches(n, 0);
+  for (const auto& edge : result.edges) {
+    if (!edge.match.ok) continue;
+    ++accepted_matches[edge.source];
+    ++accepted_matches[edge.dest];
+  }
+  std::vector<char> distrusted(result.edges.size(), 0);
+  for (std::size_t e = 0; e < result.edges.size(); ++e) {
+    MergeEdge& edge = result.edges[e];
+    const bool lone = accepted_matches[edge.source] == 1 || accepted_matches[edge.dest] == 1;
+    if (!edge.match.ok || !lone || edge.match.evidence.agreement >= matcher.params.min_agreement ||
+        edge.match.p_correct >= params.lone_match_min_p_correct) {
+      continue;
+    }
+    distrusted[e] = 1;
+    edge.note = "accepted by the model alone (p_correct " + detail::format_fixed(edge.match.p_correct, 3) +
+                ", agreement " + detail::format_fixed(edge.match.evidence.agreement, 3) +
+                "), but the only accepted match of its map: below MergeParams::lone_match_min_p_correct " +
+                detail::format_double(params.lone_match_min_p_correct) + " it is not trusted alone";
+  }
   const auto matched = std::chrono::steady_clock::now();
 
   // 2. Poses over the accepted edges; drop the contradicted ones, the worst first.
@@ -231,7 +262,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   std::vector<std::size_t> edge_of;  // constraint → edge
   for (std::size_t e = 0; e < result.edges.size(); ++e) {
     const MergeEdge& edge = result.edges[e];
-    if (!edge.match.ok) continue;
+    if (!edge.match.ok || distrusted[e]) continue;
     PoseConstraint c;
     c.source = edge.source;
     c.dest = edge.dest;
