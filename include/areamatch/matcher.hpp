@@ -201,6 +201,16 @@ struct MatcherParams {
 
 namespace detail {
 
+/// Every k-th of `points`, k = max(1, size / about): about `about` of them (at most 2·about − 1),
+/// evenly spread, in order.
+inline std::vector<Eigen::Vector2d> evenly_thinned(const std::vector<Eigen::Vector2d>& points, std::size_t about) {
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / about);
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size() / stride + 1);
+  for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
+  return out;
+}
+
 /// A transform with its whole-map score.
 struct ScoredTransform {
   Similarity2 T;
@@ -792,9 +802,7 @@ class Matcher {
     // edge (frontiers left out: a partial map's frontier is not a wall of the other map), first
     // on a few hundred wall points, then on all of them.
     const std::vector<Eigen::Vector2d>& walls = edges.source_walls.empty() ? edges.source_points : edges.source_walls;
-    std::vector<Eigen::Vector2d> sparse_walls;
-    const std::size_t stride = std::max<std::size_t>(1, walls.size() / params.sparse_samples);
-    for (std::size_t i = 0; i < walls.size(); i += stride) sparse_walls.push_back(walls[i]);
+    const std::vector<Eigen::Vector2d> sparse_walls = detail::evenly_thinned(walls, params.sparse_samples);
     auto score_on = [&](const std::vector<Eigen::Vector2d>& points) {
       detail::for_each_index(candidates.size(), params.threads, [&](std::size_t i) {
         candidates[i].score = boundary_inlier_fraction(points, edges.dest_lookup, candidates[i].T, params.candidate_wall_distance_m);
@@ -921,9 +929,7 @@ class Matcher {
     RefineParams refinement = params.refinement;
     refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
     // A rival needs only to be placed well enough to be scored: its ICP runs on fewer points.
-    std::vector<Eigen::Vector2d> points;
-    const std::size_t stride = std::max<std::size_t>(1, edges.source_points.size() / params.turn_check_points);
-    for (std::size_t i = 0; i < edges.source_points.size(); i += stride) points.push_back(edges.source_points[i]);
+    const std::vector<Eigen::Vector2d> points = detail::evenly_thinned(edges.source_points, params.turn_check_points);
     std::vector<double> walls(alternatives.size());
     detail::for_each_index(alternatives.size(), params.threads, [&](std::size_t i) {
       const Similarity2 refined = refine_icp(points, edges.dest_lookup, alternatives[i], refinement);
