@@ -12,7 +12,7 @@
 //   build/benchmarks/bench_matching --benchmark_out=matching.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
 #include <areamatch/io.hpp>
-#include <areamatch/io/evaluate.hpp>
+#include <eval/evaluate.hpp>
 
 #include <benchmark/benchmark.h>
 

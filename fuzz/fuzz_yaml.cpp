@@ -1,6 +1,6 @@
 // Fuzz target: the ROS map_server YAML reader and the pairs-manifest reader on arbitrary text.
 #include <areamatch/io.hpp>
-#include <areamatch/io/manifest.hpp>
+#include <eval/manifest.hpp>
 
 #include <cstddef>
 #include <cstdint>

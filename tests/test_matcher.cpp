@@ -112,7 +112,7 @@ TEST_CASE("a map matched against itself gives the identity") {
 
 TEST_CASE("the paper preset: right on a pair it can get, a half turn where the whole map is needed") {
   // The paper's matching as written loses most real pairs to half turns and mirrors
-  // (docs/evaluation.md, ALGORITHM.md §7). This small mirrored pair (`areamatch generate --seed 5
+  // (docs/evaluation.md, docs/algorithm.md). This small mirrored pair (`areamatch generate --seed 5
   // --width 20 --height 14 --rotation 75 --mirror`) it gets right...
   BuildingParams small;
   small.width_m = 20;

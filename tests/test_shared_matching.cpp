@@ -6,7 +6,7 @@
 #include <areamatch/areamatch.hpp>
 #include <areamatch/evaluation.hpp>
 #include <areamatch/io.hpp>
-#include <areamatch/io/evaluate.hpp>
+#include <eval/evaluate.hpp>
 
 #include <doctest/doctest.h>
 

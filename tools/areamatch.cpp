@@ -8,13 +8,13 @@
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
 //
 // Exit status: 0 success, 1 no acceptable result (matching), 2 bad input or usage.
-#include "calibrate.hpp"
+#include "eval/calibrate.hpp"
+#include "eval/eval_report.hpp"
 #include "cli_args.hpp"
 
 #include <areamatch/areamatch.hpp>
 #include <areamatch/detail/format.hpp>
 #include <areamatch/io.hpp>
-#include <areamatch/io/eval_report.hpp>
 #include <areamatch/io/match_files.hpp>
 #include <areamatch/merge.hpp>
 

@@ -12,7 +12,7 @@
 ///   result.hpp      MatchResult
 ///
 /// Two configurations ship. `MatcherParams{}` is our default, chosen by measurement on real maps
-/// (ALGORITHM.md §7): k = 10, four turns per segment match, both segment sources, wall-direction
+/// (docs/algorithm.md): k = 10, four turns per segment match, both segment sources, wall-direction
 /// hypotheses, whole-map verification of every cluster, ICP refinement. `PaperMatcher` is the
 /// paper as written: k = 3, one rotation per pair, OP ≥ 0.5 by polygon intersection, 3° angular
 /// clustering, the largest cluster's member with the highest Σ OP.
@@ -68,7 +68,7 @@ enum class Selection : std::uint8_t {
 
 struct MatcherParams {
   /// Mutual k-nearest neighbours. The paper's 3 kept ~15 % of the true pairs on SLAM-to-layout
-  /// maps (ALGORITHM.md §7); 10 keeps ~42 %, and the verification stage rejects the rest.
+  /// maps (docs/algorithm.md); 10 keeps ~42 %, and the verification stage rejects the rest.
   std::size_t k = 10;
   HypothesisParams hypotheses;
   Selection selection = Selection::whole_map;
@@ -149,7 +149,7 @@ struct MatcherParams {
   /// machine, so the limit keeps a pair under about 15 s.
   std::size_t max_areas = 3000;
 
-  /// The paper as written (ALGORITHM.md §2): k = 3, one rotation per pair from the passage pair
+  /// The paper as written (docs/algorithm.md): k = 3, one rotation per pair from the passage pair
   /// (or hull diameters), exact OP ≥ 0.5, the largest 3° cluster, Σ OP; no refinement.
   static MatcherParams paper() {
     MatcherParams p;

@@ -420,7 +420,7 @@ PYBIND11_MODULE(_core, m) {
       "segment",
       [](const am::OccupancyGrid& grid, std::optional<double> door_width) {
         if (door_width) am::detail::require_positive(*door_width, "door_width");
-        return am::detail::segmenter_with_door(door_width).segment(grid);
+        return am::detail::segmenter_with_door(am::VoronoiSegmenter{}, door_width).segment(grid);
       },
       py::arg("map"), py::arg("door_width") = py::none(), release_gil(),
       "The map's Area Graph (door_width in metres: openings narrower than it are doors; default 1.2).");
@@ -503,7 +503,7 @@ PYBIND11_MODULE(_core, m) {
              p.options = pair_options(door_width, std::nullopt, std::nullopt, allow_reflection, false, k, min_score,
                                       min_agreement, min_p_correct, false, threads);
              am::detail::apply_match_options(p.matcher.params, p.options);
-             p.matcher.segmenter = am::detail::segmenter_with_door(door_width);
+             p.matcher.segmenter = am::detail::segmenter_with_door(am::VoronoiSegmenter{}, door_width);
              p.matcher.params.validate();
              return p;
            }),

@@ -5,7 +5,7 @@
 // pair that touches that building. Program code, not library API.
 
 #include <areamatch/error.hpp>
-#include <areamatch/io/manifest.hpp>
+#include "manifest.hpp"
 #include <areamatch/match/decision.hpp>
 
 #include <algorithm>

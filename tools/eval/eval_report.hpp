@@ -1,12 +1,13 @@
 #pragma once
-/// \file io/eval_report.hpp
-/// An evaluation (`io/evaluate.hpp`) as a text table for the terminal, JSON, CSV and a Markdown
+/// \file eval/eval_report.hpp
+/// An evaluation (`eval/evaluate.hpp`) as a text table for the terminal, JSON, CSV and a Markdown
 /// report with one picture per pair. Times in milliseconds in the table, CSV and Markdown,
 /// seconds in JSON (like `match_result_json`).
 
-#include "../detail/format.hpp"
 #include "evaluate.hpp"
-#include "json.hpp"
+
+#include <areamatch/detail/format.hpp>
+#include <areamatch/io/json.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -1,8 +1,8 @@
 #pragma once
-/// \file io/evaluate.hpp
-/// Evaluating the matcher on the pairs of a manifest (`io/manifest.hpp`): per pair, the areas,
+/// \file eval/evaluate.hpp
+/// Evaluating the matcher on the pairs of a manifest (`eval/manifest.hpp`): per pair, the areas,
 /// the times of each step (median over repeats), the transform and — with ground truth — its
-/// error judged exactly as `shared/tools/score.py` judges it. Reports: `io/eval_report.hpp`.
+/// error judged exactly as `shared/tools/score.py` judges it. Reports: `eval/eval_report.hpp`.
 ///
 /// \code
 /// const areamatch::Manifest manifest = areamatch::load_manifest("pairs.json");
@@ -12,9 +12,10 @@
 /// const areamatch::EvalSummary summary = areamatch::summarize(rows);
 /// \endcode
 
-#include "../evaluation.hpp"
 #include "manifest.hpp"
-#include "match_files.hpp"
+
+#include <areamatch/evaluation.hpp>
+#include <areamatch/io/match_files.hpp>
 
 #include <algorithm>
 #include <cstring>

@@ -1,5 +1,5 @@
 #pragma once
-/// \file io/manifest.hpp
+/// \file eval/manifest.hpp
 /// Pairs manifests: the JSON format of `shared/pairs.json`, for evaluating a matcher on map pairs
 /// with (optional) ground truth. Read with yaml-cpp, which reads JSON.
 ///
@@ -17,10 +17,10 @@
 /// skew the correct count. Pairs marked `different_buildings` are the exception: maps that must
 /// NOT match (judged correct when rejected), with no ground truth.
 
-#include "../detail/file.hpp"
-#include "../error.hpp"
-#include "../evaluation.hpp"
-#include "../transform.hpp"
+#include <areamatch/detail/file.hpp>
+#include <areamatch/error.hpp>
+#include <areamatch/evaluation.hpp>
+#include <areamatch/transform.hpp>
 
 #include <yaml-cpp/yaml.h>
 

@@ -8,6 +8,10 @@
 /// options.allow_reflection = true;
 /// const areamatch::MapPairRun run = areamatch::match_map_files("robot.yaml", "layout.yaml", options);
 /// if (run.result.ok) std::cout << run.result.T_dest_source.rotation << "\n";
+///
+/// // The same with a matcher of your own policies (its segmenter and parameters are used):
+/// areamatch::Matcher<areamatch::VoronoiSegmenter, MyFeatures> mine;
+/// const auto run2 = areamatch::match_map_files(mine, "robot.yaml", "layout.yaml", options);
 /// \endcode
 
 #include "../io.hpp"
@@ -20,6 +24,7 @@
 #include <cstddef>
 #include <optional>
 #include <string>
+#include <type_traits>
 
 namespace areamatch {
 
@@ -29,7 +34,7 @@ struct MapPairOptions {
   LoadOptions dest_load;
   std::optional<double> source_door_width_m;  ///< `VoronoiSegmenter` door width of the source
   std::optional<double> dest_door_width_m;
-  bool paper = false;                         ///< `PaperMatcher` instead of `Matcher<>`
+  bool paper = false;                         ///< `PaperMatcher` instead of `Matcher<>` (overloads without a matcher)
   bool allow_reflection = false;              ///< also try the source's mirror image
   std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
   std::optional<double> min_score;            ///< reject below this whole-map score
@@ -54,9 +59,17 @@ struct MapPairRun {
 
 namespace detail {
 
-inline VoronoiSegmenter segmenter_with_door(const std::optional<double>& door_width_m) {
-  VoronoiSegmenter segmenter;
-  if (door_width_m) segmenter.params.with_door_width(*door_width_m);
+/// The matcher's segmenter with `door_width_m` applied. Only `VoronoiSegmenter` has a door
+/// width; for another segmenter a door width is refused rather than ignored.
+template <class Segmenter>
+Segmenter segmenter_with_door(Segmenter segmenter, const std::optional<double>& door_width_m) {
+  if (door_width_m) {
+    if constexpr (std::is_same_v<Segmenter, VoronoiSegmenter>) {
+      segmenter.params.with_door_width(*door_width_m);
+    } else {
+      throw parameter_error("MapPairOptions door width: only VoronoiSegmenter has one; set the parameters of your own segmenter instead");
+    }
+  }
   return segmenter;
 }
 
@@ -76,7 +89,7 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRu
   apply_match_options(matcher.params, options);
   if (options.estimate_scale) {
     matcher.params.estimate_scale = true;
-    matcher.segmenter = segmenter_with_door(options.source_door_width_m);
+    matcher.segmenter = segmenter_with_door(matcher.segmenter, options.source_door_width_m);
     return matcher.match_estimating_scale(run.source, run.dest, run.dest_graph, &run.source_graph);
   }
   return matcher.match(run.source, run.source_graph, run.dest, run.dest_graph);
@@ -85,9 +98,10 @@ MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRu
 /// One end-to-end run: `get_grid(0)` (the source) and `get_grid(1)` (the destination) are
 /// fetched and segmented each on its own (side by side with `threads` ≥ 2; with estimate_scale
 /// the source is segmented at each candidate scale, inside the match), then matched.
-/// `result.timings.total_s` counts from the first fetch.
-template <class GetGrid>
-MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
+/// `result.timings.total_s` counts from the first fetch. `matcher` is copied: its segmenter
+/// (with the door widths) segments both maps, its parameters with `options` applied match them.
+template <class M, class GetGrid>
+MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid&& get_grid) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   MapPairRun run;
@@ -99,11 +113,11 @@ MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
     if (source && options.estimate_scale) return;
     const auto segment_start = clock::now();
     (source ? run.source_graph : run.dest_graph) =
-        segmenter_with_door(source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
+        segmenter_with_door(matcher.segmenter, source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
     segment_s[i] = seconds_since(segment_start);
   });
   const auto match_start = clock::now();
-  run.result = options.paper ? configured_match(PaperMatcher{}, options, run) : configured_match(Matcher<>{}, options, run);
+  run.result = configured_match(matcher, options, run);
   const auto end = clock::now();
   MatchTimings& t = run.result.timings;
   t.segment_dest_s = segment_s[1];
@@ -119,19 +133,36 @@ MapPairRun run_map_pair(const MapPairOptions& options, GetGrid&& get_grid) {
 
 }  // namespace detail
 
-/// Loads, segments and matches `source_path` onto `dest_path`. Throws what `load_map` and the
-/// segmenter throw on bad input; "no acceptable match" is `result.ok == false`.
-inline MapPairRun match_map_files(const std::string& source_path, const std::string& dest_path,
-                                  const MapPairOptions& options = {}) {
-  return detail::run_map_pair(options, [&](std::size_t i) {
+/// Loads, segments and matches `source_path` onto `dest_path` with `matcher` (any `Matcher<...>`:
+/// its segmenter and parameters, then what `options` sets; `options.paper` is not used). Throws
+/// what `load_map` and the segmenter throw on bad input, and `parameter_error` for a door width
+/// with a segmenter other than `VoronoiSegmenter`; "no acceptable match" is `result.ok == false`.
+template <class M>
+MapPairRun match_map_files(const M& matcher, const std::string& source_path, const std::string& dest_path,
+                           const MapPairOptions& options = {}) {
+  return detail::run_map_pair(matcher, options, [&](std::size_t i) {
     return load_map(i == 0 ? source_path : dest_path, i == 0 ? options.source_load : options.dest_load);
   });
 }
 
-/// Segments and matches two grids already in memory, exactly as `match_map_files` does for two
-/// files (the load options are not used): the same maps give the same result either way.
+/// Segments and matches two grids already in memory with `matcher`, exactly as `match_map_files`
+/// does for two files (the load options are not used): the same maps give the same result either way.
+template <class M>
+MapPairRun match_grids(const M& matcher, const OccupancyGrid& source, const OccupancyGrid& dest,
+                       const MapPairOptions& options = {}) {
+  return detail::run_map_pair(matcher, options, [&](std::size_t i) { return i == 0 ? source : dest; });
+}
+
+/// `match_map_files` with the default `Matcher<>`, or `PaperMatcher` when `options.paper`.
+inline MapPairRun match_map_files(const std::string& source_path, const std::string& dest_path,
+                                  const MapPairOptions& options = {}) {
+  return options.paper ? match_map_files(PaperMatcher{}, source_path, dest_path, options)
+                       : match_map_files(Matcher<>{}, source_path, dest_path, options);
+}
+
+/// `match_grids` with the default `Matcher<>`, or `PaperMatcher` when `options.paper`.
 inline MapPairRun match_grids(const OccupancyGrid& source, const OccupancyGrid& dest, const MapPairOptions& options = {}) {
-  return detail::run_map_pair(options, [&](std::size_t i) { return i == 0 ? source : dest; });
+  return options.paper ? match_grids(PaperMatcher{}, source, dest, options) : match_grids(Matcher<>{}, source, dest, options);
 }
 
 }  // namespace areamatch

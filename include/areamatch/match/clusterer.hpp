@@ -1,6 +1,6 @@
 #pragma once
 /// \file match/clusterer.hpp
-/// Clustering of hypotheses (paper §III-E, ALGORITHM.md §2.6).
+/// Clustering of hypotheses (paper §III-E, docs/algorithm.md).
 ///
 /// A clusterer policy groups hypotheses and returns the groups best first; it must be
 /// deterministic (the same hypotheses in the same order give the same clusters) and must not put

@@ -1,7 +1,7 @@
 #pragma once
 /// \file match/costs.hpp
 /// Weighted cost matrix and mutual k-nearest-neighbour area pairs (paper §III-C,
-/// ALGORITHM.md §2.3–2.4).
+/// docs/algorithm.md).
 ///
 /// A weights policy gives one weight per feature of the feature set, in its order. The smallest
 /// conforming type:

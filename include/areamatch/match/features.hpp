@@ -1,6 +1,6 @@
 #pragma once
 /// \file match/features.hpp
-/// Per-area features and their costs (paper §III-B, ALGORITHM.md §2.1–2.2), and `FeatureSet`,
+/// Per-area features and their costs (paper §III-B, docs/algorithm.md), and `FeatureSet`,
 /// which composes them.
 ///
 /// A feature policy describes one area by a value (its descriptor) and compares two descriptors
@@ -40,7 +40,7 @@
 namespace areamatch {
 
 /// |a − b| / max(a, b) for non-negative values, guarded: 0 when both are ≈ 0, 1 when only one is
-/// (ALGORITHM.md §2.2, §4.5).
+/// (docs/algorithm.md).
 inline double relative_difference(double a, double b) {
   constexpr double epsilon = 1e-9;
   const double denominator = std::max(a, b);
@@ -143,7 +143,7 @@ struct PassageDistances {
     std::vector<Eigen::Vector2d> positions;
     for (int id : area.passages) {
       const Eigen::Vector2d& p = graph.passages[static_cast<std::size_t>(id)].position;
-      // The same opening listed twice would give pd = 0 and a 0/0 cost (ALGORITHM.md §4.3).
+      // The same opening listed twice would give pd = 0 and a 0/0 cost (docs/algorithm.md).
       const bool seen = std::any_of(positions.begin(), positions.end(),
                                     [&](const Eigen::Vector2d& q) { return (q - p).norm() < 1e-6; });
       if (!seen) positions.push_back(p);

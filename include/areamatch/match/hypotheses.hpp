@@ -2,10 +2,10 @@
 /// \file match/hypotheses.hpp
 /// Transform hypotheses: for every mutually matched area pair, a rotation from the segments its
 /// features matched and a translation that puts the source segment's midpoint on the
-/// destination's (paper §III-D, ALGORITHM.md §2.5), with the pair's overlap as a filter.
+/// destination's (paper §III-D, docs/algorithm.md), with the pair's overlap as a filter.
 ///
 /// The paper takes one rotation per pair. On real maps that rotation is usually wrong (a
-/// different pair of doors, a rectangle's ambiguous diameter; ALGORITHM.md §7), so the default
+/// different pair of doors, a rectangle's ambiguous diameter; docs/algorithm.md), so the default
 /// also emits the turns by 180° and ±90° and the hull diameter next to the passage pair, and adds
 /// rotations from the maps' dominant wall directions anchored at each pair's centroids.
 
@@ -67,7 +67,7 @@ struct HypothesisParams {
   /// anchored at the centroids of every pair.
   bool wall_directions = true;
   /// Keep a hypothesis only when its pair overlaps by at least this (OP, 0..1). The paper gives
-  /// no value; 0.5 is ALGORITHM.md's reading. Only a filter: rooms overlap their own turns.
+  /// no value; 0.5 is our reading (docs/algorithm.md). Only a filter: rooms overlap their own turns.
   double min_area_overlap = 0.5;
   /// OP from Boost.Geometry polygon intersection (exact, the paper's) or from the rasters (fast).
   bool exact_overlap = false;

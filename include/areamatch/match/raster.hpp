@@ -3,7 +3,7 @@
 /// An Area Graph's labelled free space on square cells of a chosen size (e.g. 0.2 m), so that
 /// the overlap of two maps under a candidate transform is a few thousand lookups instead of a
 /// polygon intersection. The verification stage scores hundreds of candidates this way
-/// (ALGORITHM.md §7, recommendation 3).
+/// (docs/algorithm.md).
 
 #include "../area_graph.hpp"
 #include "../error.hpp"

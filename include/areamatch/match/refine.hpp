@@ -1,7 +1,7 @@
 #pragma once
 /// \file match/refine.hpp
 /// Trimmed ICP on the boundaries of the two maps' area-covered free space: turns a coarse
-/// per-area transform into an accurate global one (ALGORITHM.md §7, recommendation 5). The
+/// per-area transform into an accurate global one (docs/algorithm.md). The
 /// matching gate shrinks from `gates_m.front()` to `gates_m.back()`; at each step only the
 /// `keep_fraction` closest correspondences count, so laser streaks, furniture and rooms one map
 /// lacks do not pull the result. Each step minimises the distances to the destination's walls

@@ -3,7 +3,7 @@
 /// Stage 4 of segmentation: rooms and passages on the skeleton.
 ///
 /// This is the Boost-only equivalent of the paper's α-shape with α tied to the door width W
-/// (ALGORITHM.md §1.5): a skeleton sample with clearance < W/2 is *narrow*, otherwise *wide*.
+/// (docs/algorithm.md): a skeleton sample with clearance < W/2 is *narrow*, otherwise *wide*.
 /// - Connected wide parts whose clearance somewhere reaches W/2 + `room_margin_m` are room
 ///   candidates (the margin ignores parts that are barely wider than a door).
 /// - A narrow stretch that joins two different rooms is a door: one passage at its clearance
