@@ -22,6 +22,8 @@
 
 #include <Eigen/Core>
 
+#include <cstddef>
+
 namespace areamatch {
 
 namespace bg = boost::geometry;
@@ -43,5 +45,30 @@ inline Polygon2 make_rectangle(double min_x, double min_y, double max_x, double 
   bg::correct(polygon);
   return polygon;
 }
+
+namespace detail {
+
+/// The two vertices of a ring farthest apart (the first such pair) and their distance; for a
+/// convex hull, its diameter. An empty ring gives two zero points at distance −1.
+struct FarthestVertices {
+  Eigen::Vector2d a = Eigen::Vector2d::Zero();
+  Eigen::Vector2d b = Eigen::Vector2d::Zero();
+  double distance = -1.0;
+};
+
+inline FarthestVertices farthest_vertices(const Polygon2& polygon) {
+  FarthestVertices best;
+  const auto& ring = polygon.outer();
+  // Hulls of our areas have tens of vertices: O(h²) is simpler than rotating calipers and as fast.
+  for (std::size_t i = 0; i < ring.size(); ++i) {
+    for (std::size_t j = i + 1; j < ring.size(); ++j) {
+      const double distance = bg::distance(ring[i], ring[j]);
+      if (distance > best.distance) best = {to_vector(ring[i]), to_vector(ring[j]), distance};
+    }
+  }
+  return best;
+}
+
+}  // namespace detail
 
 }  // namespace areamatch

@@ -89,20 +89,8 @@ namespace detail {
 
 /// The longest distance between two vertices of a convex hull, and that segment.
 inline AreaSegment hull_diameter(const Polygon2& hull) {
-  AreaSegment best;
-  double best_length = -1.0;
-  const auto& ring = hull.outer();
-  // Hulls of our areas have tens of vertices: O(h²) is simpler than rotating calipers and as fast.
-  for (std::size_t i = 0; i < ring.size(); ++i) {
-    for (std::size_t j = i + 1; j < ring.size(); ++j) {
-      const double length = bg::distance(ring[i], ring[j]);
-      if (length > best_length) {
-        best_length = length;
-        best = {to_vector(ring[i]), to_vector(ring[j])};
-      }
-    }
-  }
-  return best;
+  const FarthestVertices diameter = farthest_vertices(hull);
+  return {diameter.a, diameter.b};
 }
 
 }  // namespace detail

@@ -13,12 +13,12 @@
 /// boundary, `detail::RingTracer`), so they follow the cell boundaries exactly and are valid.
 
 #include "../area_graph.hpp"
-#include "../detail/blocks.hpp"
 #include "../detail/run_components.hpp"
 #include "../error.hpp"
 #include "../geometry.hpp"
 #include "../grid.hpp"
 #include "binarize.hpp"
+#include "morphology.hpp"
 #include "rooms.hpp"
 
 #include <algorithm>
@@ -73,101 +73,6 @@ void supercover_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Mark&& 
     pc = c;
     pr = r;
   }
-}
-
-// The erosion's byte kernels, each over `count` cells of distinct rows, called through
-// `in_blocks` (detail/blocks.hpp: vectorised at -O2 too).
-
-/// Vertical distance to a non-free cell from the row above's, capped (0 on non-free cells).
-inline void grow_from_above(std::uint8_t* __restrict row, const std::uint8_t* __restrict above,
-                            const std::uint8_t* __restrict free, int count, std::uint8_t cap) {
-  for (int k = 0; k < count; ++k) {
-    const std::uint8_t grown = above[k] < cap ? static_cast<std::uint8_t>(above[k] + 1) : cap;
-    row[k] = free[k] ? grown : 0;
-  }
-}
-
-/// The same from the row below, kept where smaller.
-inline void grow_from_below(std::uint8_t* __restrict row, const std::uint8_t* __restrict below, int count,
-                            std::uint8_t cap) {
-  for (int k = 0; k < count; ++k) {
-    const std::uint8_t grown = below[k] < cap ? static_cast<std::uint8_t>(below[k] + 1) : cap;
-    row[k] = std::min(row[k], grown);
-  }
-}
-
-inline void at_least(std::uint8_t* __restrict out, const std::uint8_t* __restrict row, int count, std::uint8_t n) {
-  for (int k = 0; k < count; ++k) out[k] = row[k] >= n;
-}
-
-/// out &= (left ≥ n) and (right ≥ n); left and right may overlap (both are only read).
-inline void and_both_at_least(std::uint8_t* __restrict out, const std::uint8_t* __restrict left,
-                              const std::uint8_t* __restrict right, int count, std::uint8_t n) {
-  for (int k = 0; k < count; ++k) out[k] &= static_cast<std::uint8_t>((left[k] >= n) & (right[k] >= n));
-}
-
-/// Cells of `mask` with no cell outside it closer than `distance` (in cells, centre to centre):
-/// the erosion by a disc. Works on byte column distances and a short window per row, so it
-/// needs one byte per cell. Beyond the mask's edge counts as outside.
-inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mask, int W, int H, double distance) {
-  const std::size_t N = static_cast<std::size_t>(W) * H;
-  std::vector<std::uint8_t> core(N, 0);
-  if (N == 0) return core;
-  const double threshold = distance * distance;
-  const int reach = static_cast<int>(std::ceil(distance));
-  if (reach >= 250) throw parameter_error("erosion radius too large for the grid's resolution");
-  const auto cap = static_cast<std::uint8_t>(reach + 1);  // cap² ≥ threshold: "far enough"
-  // Each row's mask cells lie in [first[r], last[r]); outside it the column distances and the
-  // core stay 0, so every pass skips it — on a rotated or L-shaped building, most of the box.
-  std::vector<int> first(static_cast<std::size_t>(H)), last(static_cast<std::size_t>(H));
-  for (int r = 0; r < H; ++r) {
-    const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * W];
-    first[r] = find_byte_not_equal(row, 0, W, 0);
-    last[r] = find_last_byte_not_equal(row, first[r], W, 0);
-  }
-  // Vertical distance to the nearest non-free cell in the same column, capped.
-  std::vector<std::uint8_t> vertical(N, 0);
-  for (int c = first[0]; c < last[0]; ++c) vertical[c] = mask[c] ? 1 : 0;
-  for (int r = 1; r < H; ++r) {
-    const std::uint8_t* above = &vertical[static_cast<std::size_t>(r - 1) * W];
-    const std::uint8_t* free = &mask[static_cast<std::size_t>(r) * W];
-    std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    in_blocks(first[r], last[r], [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
-  }
-  // Beyond the last row is outside too (as beyond the first, above).
-  std::uint8_t* bottom = &vertical[static_cast<std::size_t>(H - 1) * W];
-  for (int c = first[H - 1]; c < last[H - 1]; ++c) bottom[c] = std::min<std::uint8_t>(bottom[c], 1);
-  for (int r = H - 2; r >= 0; --r) {
-    const std::uint8_t* below = &vertical[static_cast<std::size_t>(r + 1) * W];
-    std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    in_blocks(first[r], last[r], [&](int c, int count) { grow_from_below(row + c, below + c, count, cap); });
-  }
-  // Core iff for every column offset dx within reach: vertical(c + dx) ≥ need[|dx|], the
-  // smallest vertical distance that keeps that column's nearest obstacle far enough. One pass
-  // of byte comparisons per offset, which the compiler vectorises. need[0] ≥ 1 keeps the core
-  // inside the mask (cells outside have vertical distance 0).
-  std::vector<std::uint8_t> need(static_cast<std::size_t>(reach) + 1);
-  for (int dx = 0; dx <= reach; ++dx) {
-    const double rest = threshold - static_cast<double>(dx) * dx;
-    need[dx] = static_cast<std::uint8_t>(rest <= 0.0 ? 0 : std::min<int>(cap, static_cast<int>(std::ceil(std::sqrt(rest) - 1e-9))));
-  }
-  need[0] = std::max<std::uint8_t>(need[0], 1);
-  for (int r = 0; r < H; ++r) {
-    const int lo = first[r], hi = last[r];
-    if (lo >= hi) continue;
-    const std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    std::uint8_t* out = &core[static_cast<std::size_t>(r) * W];
-    in_blocks(lo, hi, [&](int c, int count) { at_least(out + c, row + c, count, need[0]); });
-    for (int dx = 1; dx <= reach; ++dx) {
-      const std::uint8_t n = need[dx];
-      if (n > 0) {  // beyond the mask counts as obstacle: cells that close to its edge fail
-        for (int c = lo; c < std::min(dx, hi); ++c) out[c] = 0;
-        for (int c = std::max(W - dx, lo); c < hi; ++c) out[c] = 0;
-      }
-      in_blocks(std::max(dx, lo), std::min(W - dx, hi), [&](int c, int count) { and_both_at_least(out + c, row + c - dx, row + c + dx, count, n); });
-    }
-  }
-  return core;
 }
 
 /// Splits a closed lattice ring (first vertex not repeated) wherever it passes through the same
@@ -251,64 +156,11 @@ inline void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<i
   }
 }
 
-inline std::vector<std::uint8_t> erode(const FreeSpace& space, double distance) {
-  return erode_mask(space.free, space.width, space.height, distance);
-}
-
 inline Eigen::Vector2d lattice_to_world(const OccupancyGrid& grid, const Eigen::Vector2d& p) {
   return grid.pixel_to_world(p - Eigen::Vector2d(0.5, 0.5));
 }
 
 }  // namespace detail
-
-/// The opening of free space by a disc of `radius` cells: the cells some disc of that radius
-/// lying wholly in free space covers. Same frame as `space`.
-inline FreeSpace open_free_space(const FreeSpace& space, double radius) {
-  FreeSpace opened = space;
-  if (radius < 1.0) return opened;  // no cell is that close to another: nothing changes
-  const int W = space.width;
-  if (radius < std::sqrt(2.0)) {
-    // The disc holds a cell and its four neighbours: erode and dilate by that cross directly,
-    // far faster than the general erosion. Free cells never lie on the mask's border.
-    // Three rows of the eroded mask at a time (rows r − 1, r, r + 1 for output row r).
-    const std::uint8_t* f = space.free.data();
-    std::uint8_t* out = opened.free.data();
-    std::vector<std::uint8_t> rows(3 * static_cast<std::size_t>(W), 0);
-    auto core_row = [&](int r) { return rows.data() + static_cast<std::size_t>((r + 3) % 3) * W; };
-    auto erode_row = [&](int r, std::uint8_t* e) {
-      std::fill(e, e + W, std::uint8_t{0});
-      if (r <= 0 || r + 1 >= space.height) return;
-      const std::uint8_t* x = f + static_cast<std::size_t>(r) * W;
-      for (int c = 1; c + 1 < W; ++c) e[c] = x[c] & x[c - 1] & x[c + 1] & x[c - W] & x[c + W];
-    };
-    erode_row(0, core_row(0));
-    erode_row(1, core_row(1));
-    for (int r = 1; r + 1 < space.height; ++r) {
-      erode_row(r + 1, core_row(r + 1));
-      const std::uint8_t *up = core_row(r - 1), *mid = core_row(r), *down = core_row(r + 1);
-      const std::uint8_t* x = f + static_cast<std::size_t>(r) * W;
-      std::uint8_t* o = out + static_cast<std::size_t>(r) * W;
-      for (int c = 1; c + 1 < W; ++c) o[c] = x[c] & (mid[c] | mid[c - 1] | mid[c + 1] | up[c] | down[c]);
-    }
-    return opened;
-  }
-  const auto core = detail::erode(space, radius);
-  // Dilation of the core = complement of the erosion of its complement. The erosion counts
-  // beyond the mask as outside, which here would mean "core": pad the complement so it does not.
-  const int pad = static_cast<int>(std::ceil(radius));
-  const int PW = W + 2 * pad, PH = space.height + 2 * pad;
-  std::vector<std::uint8_t> outside_core(static_cast<std::size_t>(PW) * PH, 1);
-  for (int r = 0; r < space.height; ++r)
-    for (int c = 0; c < W; ++c)
-      outside_core[static_cast<std::size_t>(r + pad) * PW + c + pad] = !core[static_cast<std::size_t>(r) * W + c];
-  const auto far_from_core = detail::erode_mask(outside_core, PW, PH, radius);
-  for (int r = 0; r < space.height; ++r)
-    for (int c = 0; c < W; ++c) {
-      const std::size_t i = static_cast<std::size_t>(r) * W + c;
-      opened.free[i] = space.free[i] && !far_from_core[static_cast<std::size_t>(r + pad) * PW + c + pad];
-    }
-  return opened;
-}
 
 /// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
 /// the free-cell count for `covered_fraction`.
@@ -630,10 +482,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     area.max_clearance_m = std::max(area.max_clearance_m, g.samples[s].clearance * res);
   }
   for (Area& area : graph.areas) {
-    double diameter = 0.0;
-    const auto& hull = area.convex_hull.outer();
-    for (std::size_t i = 0; i < hull.size(); ++i)
-      for (std::size_t j = i + 1; j < hull.size(); ++j) diameter = std::max(diameter, bg::distance(hull[i], hull[j]));
+    const double diameter = std::max(0.0, detail::farthest_vertices(area.convex_hull).distance);
     const double width = 2.0 * std::max(area.max_clearance_m, res);
     area.kind = diameter > params.corridor_elongation * width ? AreaKind::corridor : AreaKind::room;
   }
