@@ -100,10 +100,11 @@ struct MapDataKey {
          normal_radius_m = 0.0;
   int max_points = 0;
   bool wall_directions = false;
+  WallDirectionParams wall_direction;
   bool operator==(const MapDataKey& o) const {
     return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
            lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
-           max_points == o.max_points && wall_directions == o.wall_directions;
+           max_points == o.max_points && wall_directions == o.wall_directions && wall_direction == o.wall_direction;
   }
 };
 
@@ -292,7 +293,7 @@ class Matcher {
     const Eigen::Vector2d centre = centroid_of(source_raster);
     RefineParams rigid = p.refinement;
     rigid.estimate_scale = false;
-    rigid.gates_m = {0.7, 0.4};
+    rigid.gates_m = p.scale.sweep_gates_m;
     double best_factor = 1.0, best = -1.0;
     const int steps = static_cast<int>(std::floor(p.scale.sweep_range / p.scale.sweep_step + 1e-9));
     for (int k = -steps; k <= steps; ++k) {
@@ -313,7 +314,10 @@ class Matcher {
 
   /// The lookups reach this far beyond the edges: every distance they are asked about.
   double lookup_margin() const {
-    return std::max({params.refinement.gates_m.front(), params.wall_inlier_distance_m, params.candidate_wall_distance_m});
+    const auto& gates = params.refinement.gates_m;
+    const auto& sweep_gates = params.scale.sweep_gates_m;
+    return std::max({*std::max_element(gates.begin(), gates.end()), *std::max_element(sweep_gates.begin(), sweep_gates.end()),
+                     params.wall_inlier_distance_m, params.candidate_wall_distance_m});
   }
 
   /// The key of the data this matcher builds; `normals`: the lookup carries normals (needed by
@@ -321,7 +325,8 @@ class Matcher {
   detail::MapDataKey data_key(bool normals) const {
     const RefineParams& r = params.refinement;
     return {params.coarse_cell_m, params.fine_cell_m, r.point_spacing_m, r.lookup_cell_m, lookup_margin(),
-            normals && r.point_to_line ? r.normal_radius_m : 0.0, r.max_points, params.hypotheses.wall_directions};
+            normals && r.point_to_line ? r.normal_radius_m : 0.0, r.max_points, params.hypotheses.wall_directions,
+            params.hypotheses.wall_direction};
   }
 
   void check_prepared(const PreparedMap& m, const char* which) const {
@@ -339,7 +344,7 @@ class Matcher {
     d.descriptors = features.describe(graph);
     d.coarse = make_area_raster(graph, params.coarse_cell_m);
     if (params.fine_cell_m != params.coarse_cell_m) d.fine_own = make_area_raster(graph, params.fine_cell_m);
-    if (params.hypotheses.wall_directions) d.wall_direction = dominant_wall_direction(graph);
+    if (params.hypotheses.wall_directions) d.wall_direction = dominant_wall_direction(graph, params.hypotheses.wall_direction);
     d.edge_points = detail::free_boundary_points(grid, graph, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
     d.walls = detail::without_frontiers(grid, d.edge_points);
     d.lookup = BoundaryLookup(detail::free_boundary_points(grid, graph, 0.5 * r.lookup_cell_m), r.lookup_cell_m,

@@ -16,6 +16,7 @@
 #include "error.hpp"
 #include "geometry.hpp"
 #include "grid.hpp"
+#include "image.hpp"
 #include "transform.hpp"
 #include "detail/random.hpp"
 
@@ -184,7 +185,10 @@ inline void BuildingParams::validate() const {
     throw parameter_error("BuildingParams::pillar_probability must be in [0, 1]");
   }
   const double cells = (width_m + 2 * margin_m) / resolution * ((height_m + 2 * margin_m) / resolution);
-  if (cells > 4.0e8) throw parameter_error("BuildingParams: the layout map would exceed 4e8 cells");
+  if (cells > static_cast<double>(max_grid_cells)) {
+    throw parameter_error("BuildingParams: the layout map would have more than areamatch::max_grid_cells (" +
+                          std::to_string(max_grid_cells) + ") cells, more than a map may have to be segmented");
+  }
 }
 
 inline void RobotMapParams::validate() const {
@@ -607,17 +611,24 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
   const double m = params.margin_m;
   const int width = std::max(1, static_cast<int>(std::ceil((hi.x() - lo.x() + 2 * m) / params.resolution)));
   const int height = std::max(1, static_cast<int>(std::ceil((hi.y() - lo.y() + 2 * m) / params.resolution)));
-  if (static_cast<double>(width) * height > 4.0e8) throw parameter_error("RobotMapParams: robot map would exceed 4e8 cells");
+  if (static_cast<double>(width) * height > static_cast<double>(max_grid_cells)) {
+    throw parameter_error("RobotMapParams: the robot map would have more than areamatch::max_grid_cells (" +
+                          std::to_string(max_grid_cells) + ") cells, more than a map may have to be segmented");
+  }
   robot.grid = OccupancyGrid(width, height, params.resolution, Pose2{lo.x() - m, lo.y() - m, 0.0});
   robot.T_dest_source = T_source_dest.inverse();
   robot.pixel_transform = to_pixel_transform(robot.T_dest_source, robot.grid, layout);
 
   // A smooth, seeded distortion: two long sine waves per axis.
   const double wavelength = std::max(10.0, 0.5 * std::max(bp.width_m, bp.height_m));
-  const Eigen::Vector4d phase(random.uniform(0, 6.3), random.uniform(0, 6.3), random.uniform(0, 6.3), random.uniform(0, 6.3));
+  // Phases drawn from [0, 6.3): a full turn and a little more, which is harmless for a sine (the
+  // value is kept so that the same seed draws the same maps as before).
+  constexpr double phase_range = 6.3;
+  const Eigen::Vector4d phase(random.uniform(0, phase_range), random.uniform(0, phase_range), random.uniform(0, phase_range),
+                              random.uniform(0, phase_range));
   auto bend = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
     if (params.wall_bend_m == 0.0) return Eigen::Vector2d::Zero();
-    const double k = 6.283185307179586 / wavelength;
+    const double k = 2.0 * pi / wavelength;
     return params.wall_bend_m * Eigen::Vector2d(std::sin(k * p.y() + phase[0]) * std::cos(0.5 * k * p.x() + phase[1]),
                                                 std::sin(k * p.x() + phase[2]) * std::cos(0.5 * k * p.y() + phase[3]));
   };

@@ -20,7 +20,6 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstdint>
 #include <optional>
@@ -56,6 +55,26 @@ struct Hypothesis {
 };
 
 /// How hypotheses are made.
+/// How a map's dominant wall direction is found (`dominant_wall_direction`): a length-weighted
+/// histogram of its areas' hull edges across the 90° of wall directions, the bin with the most
+/// length around it, and the circular mean of the edges near that bin.
+struct WallDirectionParams {
+  int bins = 90;                  ///< histogram bins across 90° (1° each)
+  int peak_window_bins = 2;       ///< a bin's length is summed over ±this many bins: a peak split across bins is still found
+  double mean_window_bins = 5.0;  ///< the mean is over the edges within ±this many bins of the peak's centre
+
+  bool operator==(const WallDirectionParams& o) const {
+    return bins == o.bins && peak_window_bins == o.peak_window_bins && mean_window_bins == o.mean_window_bins;
+  }
+  void validate() const {
+    if (bins < 1) throw parameter_error("WallDirectionParams::bins must be >= 1");
+    if (peak_window_bins < 0 || 2 * peak_window_bins + 1 > bins) {
+      throw parameter_error("WallDirectionParams::peak_window_bins must be in [0, (bins - 1) / 2]");
+    }
+    detail::require_positive(mean_window_bins, "WallDirectionParams::mean_window_bins");
+  }
+};
+
 struct HypothesisParams {
   /// Turns added to each segment rotation (radians). The paper: {0}. Default {0, π, ±π/2}:
   /// segments have no direction, and rooms overlap their own quarter turns.
@@ -66,6 +85,7 @@ struct HypothesisParams {
   /// Also add the four rotations that align the maps' dominant wall directions (mod 90°),
   /// anchored at the centroids of every pair.
   bool wall_directions = true;
+  WallDirectionParams wall_direction;
   /// Keep a hypothesis only when its pair overlaps by at least this (OP, 0..1). The paper gives
   /// no value; 0.5 is our reading (docs/algorithm.md). Only a filter: rooms overlap their own turns.
   double min_area_overlap = 0.5;
@@ -77,6 +97,7 @@ struct HypothesisParams {
       if (!std::isfinite(turn)) throw parameter_error("HypothesisParams::extra_turns must be finite");
     }
     if (extra_turns.empty()) throw parameter_error("HypothesisParams::extra_turns must not be empty");
+    wall_direction.validate();
     if (!(min_area_overlap >= 0.0 && min_area_overlap <= 1.0)) {
       throw parameter_error("HypothesisParams::min_area_overlap must be in [0, 1], got " + std::to_string(min_area_overlap));
     }
@@ -142,9 +163,9 @@ inline std::optional<double> exact_area_overlap(const Area& source, const Area& 
 /// The dominant wall direction of a map, in [0, π/2): the length-weighted circular mean (mod 90°)
 /// of the edges of its areas' convex hulls around the peak of their histogram. Hull edges follow
 /// walls; furniture and staircase corners barely move the peak.
-inline double dominant_wall_direction(const AreaGraph& graph) {
-  constexpr int bins = 90;
-  std::array<double, bins> histogram{};
+inline double dominant_wall_direction(const AreaGraph& graph, const WallDirectionParams& params = {}) {
+  const int bins = params.bins;
+  std::vector<double> histogram(static_cast<std::size_t>(bins), 0.0);
   std::vector<std::pair<double, double>> edges;  // (direction·4 mod 2π, length)
   for (const Area& area : graph.areas) {
     const auto& ring = area.convex_hull.outer();
@@ -159,12 +180,14 @@ inline double dominant_wall_direction(const AreaGraph& graph) {
     }
   }
   if (edges.empty()) return 0.0;
-  // Smooth over ±2 bins (±2°) so a peak split across bins is still found.
+  // Summed over ±peak_window_bins, so a peak split across bins is still found.
   int peak = 0;
   double peak_value = -1.0;
   for (int b = 0; b < bins; ++b) {
     double value = 0.0;
-    for (int d = -2; d <= 2; ++d) value += histogram[static_cast<std::size_t>((b + d + bins) % bins)];
+    for (int d = -params.peak_window_bins; d <= params.peak_window_bins; ++d) {
+      value += histogram[static_cast<std::size_t>((b + d + bins) % bins)];
+    }
     if (value > peak_value) {
       peak_value = value;
       peak = b;
@@ -173,7 +196,7 @@ inline double dominant_wall_direction(const AreaGraph& graph) {
   const double centre = (peak + 0.5) / bins * 2.0 * pi;
   double s = 0.0, c = 0.0;
   for (const auto& [quad, length] : edges) {
-    if (std::abs(wrap_angle(quad - centre)) < 2.0 * pi * 5.0 / bins) {  // within ±5° of the peak
+    if (std::abs(wrap_angle(quad - centre)) < 2.0 * pi * params.mean_window_bins / bins) {
       s += length * std::sin(quad);
       c += length * std::cos(quad);
     }

@@ -48,6 +48,13 @@ struct RefineParams {
   /// The destination's wall normals come from its boundary points within this radius (the
   /// matcher builds its destination lookup with `MatcherParams::refinement`'s).
   double normal_radius_m = 0.2;
+  /// A gate's iterations stop early once a step turns by less than `converged_rad` and moves by
+  /// less than `converged_m` (and, fitting the scale, changes it by a factor within
+  /// `converged_scale` of 1): far below what the evidence can tell apart, so more steps change
+  /// nothing a user could see.
+  double converged_rad = 1e-5;
+  double converged_m = 1e-4;
+  double converged_scale = 1e-6;
 
   void validate() const {
     if (gates_m.empty()) throw parameter_error("RefineParams::gates_m must not be empty");
@@ -58,6 +65,9 @@ struct RefineParams {
     if (max_points < 3) throw parameter_error("RefineParams::max_points must be >= 3");
     detail::require_positive(lookup_cell_m, "RefineParams::lookup_cell_m");
     detail::require_positive(normal_radius_m, "RefineParams::normal_radius_m");
+    detail::require_non_negative(converged_rad, "RefineParams::converged_rad");
+    detail::require_non_negative(converged_m, "RefineParams::converged_m");
+    detail::require_non_negative(converged_scale, "RefineParams::converged_scale");
     if (!(max_scale_step >= 1.0 && std::isfinite(max_scale_step))) {
       throw parameter_error("RefineParams::max_scale_step must be a finite factor >= 1");
     }
@@ -362,7 +372,7 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         const Eigen::Rotation2Dd turn(step(0));
         T.rotation = wrap_angle(T.rotation + step(0));
         T.translation = turn * (T.translation - c) + c + step.tail<2>();
-        if (std::abs(step(0)) < 1e-5 && step.tail<2>().norm() < 1e-4) break;
+        if (std::abs(step(0)) < params.converged_rad && step.tail<2>().norm() < params.converged_m) break;
         continue;
       }
       // 2D Procrustes: the rotation that best turns the centred source points onto the targets.
@@ -397,8 +407,8 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
       T.rotation = wrap_angle(angle);
       T.scale = shape.scale;
       T.translation = mean_to - turn * (k * mean_from);
-      if (std::abs(wrap_angle(T.rotation - previous.rotation)) < 1e-5 &&
-          (T.translation - previous.translation).norm() < 1e-4 && std::abs(k - 1.0) < 1e-6) {
+      if (std::abs(wrap_angle(T.rotation - previous.rotation)) < params.converged_rad &&
+          (T.translation - previous.translation).norm() < params.converged_m && std::abs(k - 1.0) < params.converged_scale) {
         break;
       }
     }

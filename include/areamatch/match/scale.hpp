@@ -35,6 +35,8 @@ struct ScaleParams {
   /// the scale in poorly, since walls slide along themselves.
   double sweep_range = 0.06;
   double sweep_step = 0.005;
+  /// The sweep's rigid ICP starts near the answer: only the refinement's last, tight gates.
+  std::vector<double> sweep_gates_m{0.7, 0.4};
   /// The best this many candidates are each swept and re-run, and the re-run the maps agree
   /// with most wins: one candidate's agreement can flatter a wrong scale that its re-run does
   /// not confirm (docs/evaluation.md, scale estimation). Each finalist costs one more sweep and
@@ -53,6 +55,8 @@ struct ScaleParams {
     if (!(sweep_range >= 0.0 && sweep_range < 0.5)) throw parameter_error("ScaleParams::sweep_range must be in [0, 0.5)");
     if (!(sweep_step > 0.0 && sweep_step <= 0.5)) throw parameter_error("ScaleParams::sweep_step must be in (0, 0.5]");
     if (sweep_range / sweep_step > 1000.0) throw parameter_error("ScaleParams: at most 1000 sweep steps each way");
+    if (sweep_gates_m.empty()) throw parameter_error("ScaleParams::sweep_gates_m must not be empty");
+    for (double g : sweep_gates_m) detail::require_positive(g, "ScaleParams::sweep_gates_m");
     if (finalists < 1 || finalists > 16) throw parameter_error("ScaleParams::finalists must be in [1, 16]");
   }
 };

@@ -42,11 +42,13 @@ struct RoomParams {
   double door_search_m = 1.5;
   /// Split areas where three or more corridors meet, as the paper's Area Graph does: a skeleton
   /// junction with at least three arms, each leading into a corridor-shaped part longer than
-  /// `junction_arm_length_m` (and 2.5× the junction's clearance). Off by default: on the shared
-  /// maps it lowered cross-modal consistency (SLAM→layout 0.527 → 0.496, furnished→layout
-  /// 0.973 → 0.970; docs/segmentation.md).
+  /// `junction_arm_length_m` and `junction_arm_clearances` times the junction's clearance, and
+  /// `junction_arm_elongation` times its own width (so a room's bulge is no arm). Off by default:
+  /// it lowered cross-modal consistency on the shared maps (docs/segmentation.md).
   bool split_at_junctions = false;
   double junction_arm_length_m = 2.0;
+  double junction_arm_clearances = 2.5;
+  double junction_arm_elongation = 5.0;
 
   void validate() const {
     if (!(std::isfinite(door_width_m) && door_width_m > 0.0)) {
@@ -56,6 +58,8 @@ struct RoomParams {
     detail::require_non_negative(narrow_corridor_length_m, "RoomParams::narrow_corridor_length_m");
     detail::require_non_negative(door_search_m, "RoomParams::door_search_m");
     detail::require_non_negative(junction_arm_length_m, "RoomParams::junction_arm_length_m");
+    detail::require_non_negative(junction_arm_clearances, "RoomParams::junction_arm_clearances");
+    detail::require_non_negative(junction_arm_elongation, "RoomParams::junction_arm_elongation");
   }
 };
 
@@ -371,13 +375,13 @@ inline void split_at_junctions(RoomDetection& out, const Skeleton& skeleton, dou
       for (int t : g.neighbours(s))
         if (component[t] == c) part_length[c] += 0.5 * g.distance(static_cast<int>(s), t);
     }
-    const double needed = std::max(arm_length, 2.5 * r_junction);
+    const double needed = std::max(arm_length, params.junction_arm_clearances * r_junction);
     std::vector<int> long_arms;
     std::vector<bool> part_taken(arms.size(), false);
     bool shared_part = false;
     for (std::size_t a = 0; a < arms.size(); ++a) {
       const int c = component[arms[a].first];
-      if (c < 0 || part_length[c] < needed || part_length[c] < 5.0 * part_width[c]) continue;
+      if (c < 0 || part_length[c] < needed || part_length[c] < params.junction_arm_elongation * part_width[c]) continue;
       if (part_taken[c]) shared_part = true;
       part_taken[c] = true;
       long_arms.push_back(static_cast<int>(a));
