@@ -162,42 +162,29 @@ inline Eigen::Vector2d lattice_to_world(const OccupancyGrid& grid, const Eigen::
 
 }  // namespace detail
 
-/// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
-/// the free-cell count for `covered_fraction`.
-inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
-                             const AreaParams& params = {}) {
-  params.validate();
-  const int W = space.width, H = space.height;
-  const std::size_t N = static_cast<std::size_t>(W) * H;
-  const double res = grid.resolution();
-  AreaGraph graph;
-  graph.grid = {grid.width(), grid.height(), res, grid.origin()};
-  if (N == 0) {
-    graph.labels.assign(grid.cells().size(), -1);
-    return graph;
-  }
-  // Lattice coordinates of the cropped mask → world metres.
-  const Eigen::Vector2d offset(space.offset_col, space.offset_row);
-  auto to_world = [&](const Eigen::Vector2d& lattice) { return detail::lattice_to_world(grid, lattice + offset); };
+namespace detail {
 
-  // The core: free cells at least min_clearance from every wall, where the skeleton lives.
-  const double radius = params.min_clearance_m / res;
-  std::vector<std::uint8_t> core = detail::erode(space, radius + 0.5);
+/// The labels while areas are built: a region id (≥ 0) per cell of the cropped mask, or one of
+/// these.
+inline constexpr int unlabelled = -1, barrier = -2;
 
-  // Passage lines are barriers: their free cells are marked in `label` until growth is done.
-  if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
-  constexpr int unlabelled = -1, barrier = -2;
-  // The working labels' buffer becomes `graph.labels` at the end (the grid's size, at least N):
-  // one large allocation instead of two, whose first touch of every page costs most of a pass.
-  std::vector<int> label;
-  label.reserve(std::max(N, grid.cells().size()));
-  label.assign(N, unlabelled);
+/// Lattice coordinates of the cropped mask → world metres.
+struct LatticeFrame {
+  const OccupancyGrid* grid;
+  Eigen::Vector2d offset;
+  Eigen::Vector2d operator()(const Eigen::Vector2d& lattice) const { return lattice_to_world(*grid, lattice + offset); }
+};
+
+/// Step 1: seals every passage with a line of barrier cells (marked in `label`, taken out of
+/// `core`), so growth cannot cross it. Doors are sealed one cell beyond both walls; junction
+/// spokes start at the junction. Returns the barrier cells, ascending.
+inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetection& rooms, std::vector<int>& label,
+                                                std::vector<std::uint8_t>& core) {
+  const int W = space.width;
   std::vector<std::uint32_t> barrier_cells;
-  const SampleGraph& g = rooms.graph;
   for (const auto& p : rooms.passages) {
-    // Doors are sealed one cell beyond both walls; junction spokes start at the junction.
     const Eigen::Vector2d direction = (p.line_b - p.line_a).normalized();
-    detail::supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
+    supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
       if (!space.is_free(c, r)) return;
       const std::size_t i = static_cast<std::size_t>(r) * W + c;
       if (label[i] == barrier) return;
@@ -207,9 +194,16 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     });
   }
   std::sort(barrier_cells.begin(), barrier_cells.end());
+  return barrier_cells;
+}
 
-  // Grow regions from their skeleton samples: first over the core, then at most
-  // min_clearance + fringe into thinner space (corners and cracks; laser streaks only that far).
+/// Step 2: grows every region from its skeleton samples, 4-connected: first over the core, then
+/// `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only that
+/// far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
+inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int fringe_steps, std::vector<int>& label,
+                         std::vector<std::uint8_t>& core) {
+  const int W = space.width, H = space.height;
+  const SampleGraph& g = rooms.graph;
   std::vector<std::uint32_t> queue;
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
@@ -222,7 +216,6 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     label[i] = region;
     queue.push_back(static_cast<std::uint32_t>(i));
   }
-  // The mask's border is obstacle, so a free cell's four neighbours are always inside it.
   const std::ptrdiff_t neighbour_offset[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
   // Breadth-first growth; into_fringe grows one step (one ring of cells) per call. Over the core,
   // a cell is taken out of `core` when it is labelled, so `core` alone says what is still open.
@@ -247,7 +240,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   // Most core components are reached by one region only: those are filled run by run and taken
   // out of `core`, so the cell-by-cell growth only settles the contested ones — with the same
   // result, since growth never crosses from one component into another.
-  detail::fill_uncontested_core(core, label, queue, W, H);
+  fill_uncontested_core(core, label, queue, W, H);
   for (std::uint32_t seed : queue) core[seed] = 0;  // labelled: no longer open
   grow(queue, false);
   queue.clear();
@@ -255,8 +248,8 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   // free: only free runs are looked at).
   for (int r = 0; r < H; ++r) {
     const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
-    for (int c = detail::find_byte_equal(free_row, 0, W, 1); c < W; c = detail::find_byte_equal(free_row, c, W, 1)) {
-      const int end = detail::find_byte_not_equal(free_row, c, W, 1);
+    for (int c = find_byte_equal(free_row, 0, W, 1); c < W; c = find_byte_equal(free_row, c, W, 1)) {
+      const int end = find_byte_not_equal(free_row, c, W, 1);
       for (; c < end; ++c) {
         const std::size_t i = static_cast<std::size_t>(r) * W + c;
         if (label[i] < 0) continue;
@@ -270,9 +263,12 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
       }
     }
   }
-  const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
   for (int ring = 0; ring < fringe_steps && !queue.empty(); ++ring) grow(queue, true);
-  // Barrier cells join the area most of their neighbours belong to.
+}
+
+/// Step 3: each barrier cell joins the region most of its neighbours belong to (ties: the lower id).
+inline void assign_barrier_cells(const std::vector<std::uint32_t>& barrier_cells, int W, std::vector<int>& label) {
+  const std::ptrdiff_t neighbour_offset[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
   auto majority_of_neighbours = [&](std::size_t i) {
     int candidates[4], votes[4], count = 0;
     for (std::ptrdiff_t d : neighbour_offset) {
@@ -291,59 +287,88 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   std::vector<int> barrier_labels;
   for (std::uint32_t i : barrier_cells) barrier_labels.push_back(majority_of_neighbours(i));
   for (std::size_t k = 0; k < barrier_cells.size(); ++k) label[barrier_cells[k]] = barrier_labels[k];
+}
 
-  // From here on the labelling is handled as horizontal runs of equal label: far fewer than
-  // cells. Every 4-connected piece of a label is its own region at first.
-  struct LabelRun {
-    int row, begin, end, label, piece;
-  };
+/// A horizontal run of equal label; `piece`: the 4-connected piece of that label it belongs to.
+struct LabelRun {
+  int row, begin, end, label, piece;
+};
+
+/// The labelling as runs (far fewer than cells), in raster order; row r's are
+/// [row_start[r], row_start[r + 1]).
+struct LabelRuns {
   std::vector<LabelRun> runs;
-  std::vector<std::size_t> row_start(static_cast<std::size_t>(H) + 1, 0);
+  std::vector<std::size_t> row_start;
+};
+
+/// Step 4: the labelled cells as runs (labelled cells are free: non-free stretches are skipped).
+inline LabelRuns label_runs(const FreeSpace& space, const std::vector<int>& label) {
+  const int W = space.width, H = space.height;
+  LabelRuns out;
+  out.row_start.assign(static_cast<std::size_t>(H) + 1, 0);
   for (int r = 0; r < H; ++r) {
-    row_start[r] = runs.size();
+    out.row_start[r] = out.runs.size();
     const int* row = &label[static_cast<std::size_t>(r) * W];
     const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
     int c = 0;
-    // Labelled cells are free: non-free stretches (label −1) are skipped.
-    while ((c = detail::find_byte_equal(free_row, c, W, 1)) < W) {
+    while ((c = find_byte_equal(free_row, c, W, 1)) < W) {
       const int l = row[c];
       int end = c + 1;
       while (end < W && row[end] == l) ++end;
-      if (l >= 0) runs.push_back({r, c, end, l, -1});
+      if (l >= 0) out.runs.push_back({r, c, end, l, -1});
       c = end;
     }
   }
-  row_start[H] = runs.size();
-  // Pieces: union-find over runs of equal label that overlap in consecutive rows.
+  out.row_start[H] = out.runs.size();
+  return out;
+}
+
+/// The 4-connected pieces of equal label: their cell counts and regions, numbered in raster order
+/// of their first run.
+struct Pieces {
+  std::vector<std::size_t> size;
+  std::vector<int> region;
+};
+
+/// Step 5: every 4-connected piece of a label is its own piece at first (union-find over runs of
+/// equal label that overlap in consecutive rows); sets each run's `piece`.
+inline Pieces find_pieces(LabelRuns& labelled) {
+  auto& runs = labelled.runs;
   std::vector<int> run_parent(runs.size());
   std::iota(run_parent.begin(), run_parent.end(), 0);
   auto find_run = [&](int i) {
     while (run_parent[i] != i) i = run_parent[i] = run_parent[run_parent[i]];
     return i;
   };
-  detail::for_each_vertical_contact(runs, row_start, 0, [&](std::size_t upper, std::size_t lower) {
+  for_each_vertical_contact(runs, labelled.row_start, 0, [&](std::size_t upper, std::size_t lower) {
     if (runs[upper].label != runs[lower].label) return;
     const int x = find_run(static_cast<int>(upper)), y = find_run(static_cast<int>(lower));
     if (x != y) run_parent[std::max(x, y)] = std::min(x, y);
   });
-  std::vector<std::size_t> piece_size;
-  std::vector<int> piece_region;
-  {
-    std::vector<int> piece_of_root(runs.size(), -1);
-    for (std::size_t i = 0; i < runs.size(); ++i) {  // pieces numbered in raster order of their first run
-      const int root = find_run(static_cast<int>(i));
-      if (piece_of_root[root] < 0) {
-        piece_of_root[root] = static_cast<int>(piece_size.size());
-        piece_size.push_back(0);
-        piece_region.push_back(runs[i].label);
-      }
-      runs[i].piece = piece_of_root[root];
-      piece_size[runs[i].piece] += static_cast<std::size_t>(runs[i].end - runs[i].begin);
+  Pieces pieces;
+  std::vector<int> piece_of_root(runs.size(), -1);
+  for (std::size_t i = 0; i < runs.size(); ++i) {
+    const int root = find_run(static_cast<int>(i));
+    if (piece_of_root[root] < 0) {
+      piece_of_root[root] = static_cast<int>(pieces.size.size());
+      pieces.size.push_back(0);
+      pieces.region.push_back(runs[i].label);
     }
+    runs[i].piece = piece_of_root[root];
+    pieces.size[runs[i].piece] += static_cast<std::size_t>(runs[i].end - runs[i].begin);
   }
-  const std::size_t piece_count = piece_size.size();
-  // Merging: repeatedly, the smallest piece below min_area joins the neighbour it shares most
-  // border with. Union-find over pieces; borders counted once.
+  return pieces;
+}
+
+/// Step 6: repeatedly, the smallest piece below `min_cells` joins the neighbour it shares the
+/// longest border with (union-find over pieces; borders counted once); a small piece with no
+/// neighbour is dropped. The surviving pieces are the areas, numbered in raster order of their
+/// first run; each run's `label` becomes its area (−1: dropped). Returns each piece's area.
+inline std::vector<int> merge_small_pieces(LabelRuns& labelled, const Pieces& pieces, std::size_t min_cells, int& area_count) {
+  auto& runs = labelled.runs;
+  const auto& row_start = labelled.row_start;
+  const std::size_t piece_count = pieces.size.size();
+  const int H = static_cast<int>(row_start.size()) - 1;
   std::map<std::pair<int, int>, std::size_t> border;
   auto add_border = [&](int p, int q, std::size_t length) {
     if (p != q) border[{std::min(p, q), std::max(p, q)}] += length;
@@ -351,7 +376,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   for (int r = 0; r < H; ++r)
     for (std::size_t i = row_start[r]; i + 1 < row_start[r + 1]; ++i)
       if (runs[i].end == runs[i + 1].begin) add_border(runs[i].piece, runs[i + 1].piece, 1);
-  detail::for_each_vertical_contact(runs, row_start, 0, [&](std::size_t upper, std::size_t lower) {
+  for_each_vertical_contact(runs, row_start, 0, [&](std::size_t upper, std::size_t lower) {
     const int overlap = std::min(runs[upper].end, runs[lower].end) - std::max(runs[upper].begin, runs[lower].begin);
     add_border(runs[upper].piece, runs[lower].piece, static_cast<std::size_t>(overlap));
   });
@@ -361,8 +386,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     while (parent[p] != p) p = parent[p] = parent[parent[p]];
     return p;
   };
-  std::vector<std::size_t> size(piece_size);
-  const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
+  std::vector<std::size_t> size(pieces.size);
   std::vector<bool> dropped(piece_count, false);
   std::vector<std::map<int, std::size_t>> neighbours(piece_count);  // piece → border length
   for (const auto& [pair, length] : border) {
@@ -397,10 +421,8 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     neighbours[p].clear();
     if (size[target] < min_cells) small.push({size[target], target});
   }
-
-  // Final ids: surviving roots in order of their first run (raster order).
   std::vector<int> area_of_root(piece_count, -1);
-  int area_count = 0;
+  area_count = 0;
   for (auto& run : runs) {
     const int root = find(run.piece);
     if (dropped[root]) {
@@ -410,37 +432,49 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     if (area_of_root[root] < 0) area_of_root[root] = area_count++;
     run.label = area_of_root[root];
   }
-
-  // Which skeleton region became which area: the area holding most of the region's cells.
-  // (Counted per piece: a piece lies wholly in one area.)
-  std::vector<std::map<int, std::size_t>> region_votes(rooms.region_count());
+  std::vector<int> area_of_piece(piece_count, -1);
   for (std::size_t p = 0; p < piece_count; ++p) {
     const int root = find(static_cast<int>(p));
-    if (!dropped[root]) region_votes[piece_region[p]][area_of_root[root]] += piece_size[p];
+    if (!dropped[root]) area_of_piece[p] = area_of_root[root];
   }
-  std::vector<int> area_of_region(rooms.region_count(), -1);
-  for (int r = 0; r < rooms.region_count(); ++r) {
+  return area_of_piece;
+}
+
+/// Step 7: which skeleton region became which area: the area holding most of the region's cells
+/// (counted per piece: a piece lies wholly in one area); −1 for a region with no cells left.
+inline std::vector<int> area_of_regions(int region_count, const Pieces& pieces, const std::vector<int>& area_of_piece) {
+  std::vector<std::map<int, std::size_t>> region_votes(static_cast<std::size_t>(region_count));
+  for (std::size_t p = 0; p < pieces.size.size(); ++p) {
+    if (area_of_piece[p] >= 0) region_votes[pieces.region[p]][area_of_piece[p]] += pieces.size[p];
+  }
+  std::vector<int> area_of_region(static_cast<std::size_t>(region_count), -1);
+  for (int r = 0; r < region_count; ++r) {
     std::size_t most = 0;
     for (const auto& [a, v] : region_votes[r])
       if (v > most) area_of_region[r] = a, most = v;
   }
+  return area_of_region;
+}
 
-  // Areas: polygons traced on the final labels (one walk over every area's boundary at once),
-  // and their measures.
+/// Step 8: the areas' polygons, traced on the final labels (written back into `label` from the
+/// runs; one walk over every area's boundary at once), with their size, hull and centroid. An
+/// area is 4-connected: its largest loop is the outline, and the loops turning the other way are
+/// its holes (some touching the outline at a corner).
+inline void trace_areas(const LabelRuns& labelled, int W, int H, double res, const LatticeFrame& to_world, int area_count,
+                        std::vector<int>& label, AreaGraph& graph) {
   graph.areas.resize(area_count);
-  // The runs cover exactly the labelled cells: rewriting them leaves the final labels.
-  for (const auto& run : runs) {
+  for (const auto& run : labelled.runs) {
     const auto row = static_cast<std::ptrdiff_t>(run.row) * W;
     std::fill(label.begin() + row + run.begin, label.begin() + row + run.end, run.label);
     if (run.label >= 0) graph.areas[run.label].size_m2 += (run.end - run.begin) * res * res;
   }
   std::vector<std::vector<std::vector<LatticePoint>>> loops_of_area(area_count);
   auto keep_loops = [&](int a, const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned) {
-    for (auto& loop : detail::split_pinched_ring(ring, pinned)) loops_of_area[a].push_back(std::move(loop));
+    for (auto& loop : split_pinched_ring(ring, pinned)) loops_of_area[a].push_back(std::move(loop));
   };
   // Every ring has vertical sides, and those lie at the ends of runs: start only there.
-  detail::RingTracer tracer(W, H, [&](int c, int r) { return label[static_cast<std::size_t>(r) * W + c]; });
-  for (const auto& run : runs) {
+  RingTracer tracer(W, H, [&](int c, int r) { return label[static_cast<std::size_t>(r) * W + c]; });
+  for (const auto& run : labelled.runs) {
     tracer.trace_from(run.begin, run.row, 1, keep_loops);
     tracer.trace_from(run.end - 1, run.row, 3, keep_loops);
   }
@@ -456,11 +490,9 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   for (int a = 0; a < area_count; ++a) {
     Area& area = graph.areas[a];
     area.id = a;
-    // An area is 4-connected: its largest loop is the outline, and the loops turning the other
-    // way are its holes (some touching the outline at a corner).
     auto& loops = loops_of_area[a];
     std::vector<long long> area2;
-    for (const auto& loop : loops) area2.push_back(detail::signed_area2(loop));
+    for (const auto& loop : loops) area2.push_back(signed_area2(loop));
     std::size_t outline = 0;
     for (std::size_t k = 1; k < loops.size(); ++k)
       if (std::llabs(area2[k]) > std::llabs(area2[outline])) outline = k;
@@ -475,6 +507,13 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     bg::centroid(area.polygon, centroid);
     area.centroid = to_vector(centroid);
   }
+}
+
+/// Step 9: each area's widest free disc (from its regions' skeleton samples) and its kind: a
+/// corridor when its hull diameter exceeds `corridor_elongation` times that disc's diameter.
+inline void measure_areas(const RoomDetection& rooms, const std::vector<int>& area_of_region, double res,
+                          const AreaParams& params, AreaGraph& graph) {
+  const SampleGraph& g = rooms.graph;
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
     if (region < 0 || area_of_region[region] < 0) continue;
@@ -482,12 +521,16 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     area.max_clearance_m = std::max(area.max_clearance_m, g.samples[s].clearance * res);
   }
   for (Area& area : graph.areas) {
-    const double diameter = std::max(0.0, detail::farthest_vertices(area.convex_hull).distance);
+    const double diameter = std::max(0.0, farthest_vertices(area.convex_hull).distance);
     const double width = 2.0 * std::max(area.max_clearance_m, res);
     area.kind = diameter > params.corridor_elongation * width ? AreaKind::corridor : AreaKind::room;
   }
+}
 
-  // Passages between the areas their regions became.
+/// Step 10: the passages between the areas their regions became (none inside one area).
+inline void add_passages(const RoomDetection& rooms, const std::vector<int>& area_of_region, double res,
+                         const LatticeFrame& to_world, AreaGraph& graph) {
+  const SampleGraph& g = rooms.graph;
   std::vector<std::pair<std::pair<int, int>, const DetectedPassage*>> kept;
   for (const auto& p : rooms.passages) {
     const int a = area_of_region[p.region_a], b = area_of_region[p.region_b];
@@ -509,33 +552,82 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     graph.areas[areas.second].passages.push_back(passage.id);
     graph.passages.push_back(passage);
   }
+}
 
-  // Labels back onto the whole grid, row by row, into the working labels' buffer (the runs hold
-  // the final labels, the buffer is no longer read): each row is written once, while in cache
-  // (filling the grid with −1 first and scattering the runs after cost office_g ~1.3 ms more).
-  // The grid's free cells are counted in the same pass (a separate count reread the whole grid).
+/// Step 11: the labels back onto the whole grid, row by row, into the working labels' buffer
+/// (`label`, moved in: the runs hold the final labels, the buffer is no longer read): each row is
+/// written once, while in cache (filling the grid with −1 first and scattering the runs after
+/// cost office_g ~1.3 ms more). The grid's free cells are counted in the same pass, for
+/// `covered_fraction` (a separate count reread the whole grid).
+inline void write_labels(const OccupancyGrid& grid, const FreeSpace& space, const LabelRuns& labelled,
+                         std::vector<int>&& label, AreaGraph& graph) {
   constexpr auto free_byte = static_cast<std::uint8_t>(CellState::free);
-  std::size_t labelled = 0, free_cells = 0;
+  std::size_t labelled_cells = 0, free_cells = 0;
   graph.labels = std::move(label);
   graph.labels.resize(grid.cells().size());
   for (int gr = 0; gr < grid.height(); ++gr) {
     int* out = &graph.labels[grid.index(0, gr)];
     std::fill(out, out + grid.width(), -1);
     const CellState* state = &grid.cells()[grid.index(0, gr)];
-    free_cells += detail::count_byte_equal(reinterpret_cast<const std::uint8_t*>(state), static_cast<std::size_t>(grid.width()), free_byte);
+    free_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state), static_cast<std::size_t>(grid.width()), free_byte);
     const int r = gr - space.offset_row;
-    if (r < 0 || r >= H) continue;
-    for (std::size_t k = row_start[r]; k < row_start[r + 1]; ++k) {
-      const LabelRun& run = runs[k];
+    if (r < 0 || r >= space.height) continue;
+    for (std::size_t k = labelled.row_start[r]; k < labelled.row_start[r + 1]; ++k) {
+      const LabelRun& run = labelled.runs[k];
       if (run.label < 0) continue;
       const int first = std::max(run.begin + space.offset_col, 0);
       const int last = std::min(run.end + space.offset_col, grid.width());
       if (first >= last) continue;
       std::fill(out + first, out + last, run.label);
-      labelled += detail::count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
+      labelled_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
     }
   }
-  graph.covered_fraction = free_cells ? static_cast<double>(labelled) / free_cells : 0.0;
+  graph.covered_fraction = free_cells ? static_cast<double>(labelled_cells) / free_cells : 0.0;
+}
+
+}  // namespace detail
+
+/// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
+/// the free-cell count for `covered_fraction`.
+inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
+                             const AreaParams& params = {}) {
+  params.validate();
+  const int W = space.width, H = space.height;
+  const std::size_t N = static_cast<std::size_t>(W) * H;
+  const double res = grid.resolution();
+  AreaGraph graph;
+  graph.grid = {grid.width(), grid.height(), res, grid.origin()};
+  if (N == 0) {
+    graph.labels.assign(grid.cells().size(), -1);
+    return graph;
+  }
+  if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
+  const detail::LatticeFrame to_world{&grid, Eigen::Vector2d(space.offset_col, space.offset_row)};
+
+  // The core: free cells at least min_clearance from every wall, where the skeleton lives.
+  std::vector<std::uint8_t> core = detail::erode(space, params.min_clearance_m / res + 0.5);
+  // The working labels' buffer becomes `graph.labels` at the end (the grid's size, at least N):
+  // one large allocation instead of two, whose first touch of every page costs most of a pass.
+  std::vector<int> label;
+  label.reserve(std::max(N, grid.cells().size()));
+  label.assign(N, detail::unlabelled);
+
+  const std::vector<std::uint32_t> barrier_cells = detail::seal_passages(space, rooms, label, core);
+  const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
+  detail::grow_regions(space, rooms, fringe_steps, label, core);
+  detail::assign_barrier_cells(barrier_cells, W, label);
+
+  detail::LabelRuns runs = detail::label_runs(space, label);
+  const detail::Pieces pieces = detail::find_pieces(runs);
+  int area_count = 0;
+  const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
+  const std::vector<int> area_of_piece = detail::merge_small_pieces(runs, pieces, min_cells, area_count);
+  const std::vector<int> area_of_region = detail::area_of_regions(rooms.region_count(), pieces, area_of_piece);
+
+  detail::trace_areas(runs, W, H, res, to_world, area_count, label, graph);
+  detail::measure_areas(rooms, area_of_region, res, params, graph);
+  detail::add_passages(rooms, area_of_region, res, to_world, graph);
+  detail::write_labels(grid, space, runs, std::move(label), graph);
   return graph;
 }
 
