@@ -90,6 +90,7 @@ struct MapData {
   double wall_direction = 0.0;               ///< for wall-direction hypotheses
   std::vector<Eigen::Vector2d> edge_points;  ///< sparse free-space edge: what moves (ICP, scores)
   std::vector<Eigen::Vector2d> walls;        ///< edge_points without frontiers
+  std::vector<std::size_t> free_edge;        ///< the free-space edge cells (`detail::free_edge_cells`)
   BoundaryLookup lookup;                     ///< dense free-space edge: what is landed on
   const AreaRaster& fine() const { return fine_own ? *fine_own : coarse; }
 };
@@ -345,9 +346,10 @@ class Matcher {
     d.coarse = make_area_raster(graph, params.coarse_cell_m);
     if (params.fine_cell_m != params.coarse_cell_m) d.fine_own = make_area_raster(graph, params.fine_cell_m);
     if (params.hypotheses.wall_directions) d.wall_direction = dominant_wall_direction(graph, params.hypotheses.wall_direction);
-    d.edge_points = detail::free_boundary_points(grid, graph, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
+    d.free_edge = detail::free_edge_cells(grid, graph);  // found once: thinned for the points, the lookup, the rooms' walls
+    d.edge_points = detail::boundary_points(graph.grid, d.free_edge, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
     d.walls = detail::without_frontiers(grid, d.edge_points);
-    d.lookup = BoundaryLookup(detail::free_boundary_points(grid, graph, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
+    d.lookup = BoundaryLookup(detail::boundary_points(graph.grid, d.free_edge, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
                               lookup_margin(), normals && r.point_to_line ? r.normal_radius_m : 0.0);
     return d;
   }
@@ -562,8 +564,9 @@ class Matcher {
     result.pixel_transform = to_pixel_transform(best.T, source.grid, dest.grid);
     result.score = best.score;
     compute_margins(source_fine, dest_fine, finalists, result);
-    result.matched_areas = area_correspondences(*source_map.grid, source, dest, source_fine, dest_fine, edges.dest_lookup,
-                                                best.T, params.correspondences);
+    result.matched_areas = detail::area_correspondences(
+        detail::area_wall_points(source, source_data.free_edge, params.correspondences.local.point_spacing_m), source, dest,
+        source_fine, dest_fine, edges.dest_lookup, best.T, params.correspondences);
     result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
     if (params.selection == Selection::whole_map && params.refine) {

@@ -55,35 +55,37 @@ struct CorrespondenceParams {
 
 namespace detail {
 
-/// Per area: the free-space edge points (walls, furniture) of its cells, about `spacing_m` apart.
-/// The cuts at passages are not edges of the free space, so they are not included.
-inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const OccupancyGrid& grid, const AreaGraph& graph,
+/// Per area: the free-space edge points (walls, furniture) of its cells, about `spacing_m` apart,
+/// from the free-space edge cells `free_edge` (`free_edge_cells`, or any superset of the edge
+/// within the areas' extent, in scan order). The cuts at passages are not edges of the free
+/// space, so they are not included.
+inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const AreaGraph& graph, const std::vector<std::size_t>& free_edge,
                                                                   double spacing_m) {
   std::vector<std::vector<Eigen::Vector2d>> out(graph.areas.size());
-  const auto& cells = grid.cells();
-  detail::for_each_edge_cell(
-      graph.grid, label_bounds(graph, 0), [&](std::size_t i) { return cells[i] == CellState::free; }, spacing_m,
-      [&](std::size_t i, const Eigen::Vector2d& p) {
-        const int label = graph.labels[i];
-        if (label < 0) return false;  // free but in no area: not this function's, leave the square
-        out[static_cast<std::size_t>(label)].push_back(p);
-        return true;
-      });
+  const PixelBounds bounds = label_bounds(graph, 0);
+  const auto width = static_cast<std::size_t>(graph.grid.width);
+  std::vector<std::size_t> within;
+  within.reserve(free_edge.size());
+  for (const std::size_t i : free_edge) {
+    const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+    if (x >= bounds.col0 && x < bounds.col1 && y >= bounds.row0 && y < bounds.row1) within.push_back(i);
+  }
+  detail::for_each_edge_cell(graph.grid, within, spacing_m, [&](std::size_t i, const Eigen::Vector2d& p) {
+    const int label = graph.labels[i];
+    if (label < 0) return false;  // free but in no area: not this function's, leave the square
+    out[static_cast<std::size_t>(label)].push_back(p);
+    return true;
+  });
   return out;
 }
 
-}  // namespace detail
-
-/// For every source area: its local transform and the destination area it corresponds to under
-/// it (reported when they overlap by at least `params.min_overlap`), in source-area order.
-/// `dest_edge` looks up the destination's free-space edge; the rasters share one cell size.
-inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& source_grid, const AreaGraph& source,
-                                                         const AreaGraph& dest, const AreaRaster& source_raster,
-                                                         const AreaRaster& dest_raster, const BoundaryLookup& dest_edge,
-                                                         const Similarity2& T_dest_source,
+/// `area_correspondences` with the source's per-area wall points given (`area_wall_points`).
+inline std::vector<MatchedAreaPair> area_correspondences(const std::vector<std::vector<Eigen::Vector2d>>& walls,
+                                                         const AreaGraph& source, const AreaGraph& dest,
+                                                         const AreaRaster& source_raster, const AreaRaster& dest_raster,
+                                                         const BoundaryLookup& dest_edge, const Similarity2& T_dest_source,
                                                          const CorrespondenceParams& params) {
   params.validate();
-  const auto walls = detail::area_wall_points(source_grid, source, params.local.point_spacing_m);
   const double scale2 = T_dest_source.scale * T_dest_source.scale;
   std::vector<MatchedAreaPair> out;
   std::vector<int> counts(dest.areas.size(), 0);
@@ -128,6 +130,24 @@ inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& so
     out.push_back(pair);
   }
   return out;
+}
+
+}  // namespace detail
+
+/// For every source area: its local transform and the destination area it corresponds to under
+/// it (reported when they overlap by at least `params.min_overlap`), in source-area order.
+/// `dest_edge` looks up the destination's free-space edge; the rasters share one cell size.
+inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& source_grid, const AreaGraph& source,
+                                                         const AreaGraph& dest, const AreaRaster& source_raster,
+                                                         const AreaRaster& dest_raster, const BoundaryLookup& dest_edge,
+                                                         const Similarity2& T_dest_source,
+                                                         const CorrespondenceParams& params) {
+  params.validate();
+  const auto& cells = source_grid.cells();
+  const auto free_edge = detail::edge_cells(source.grid, label_bounds(source, 0),
+                                            [&](std::size_t i) { return cells[i] == CellState::free; });
+  return detail::area_correspondences(detail::area_wall_points(source, free_edge, params.local.point_spacing_m), source, dest,
+                                      source_raster, dest_raster, dest_edge, T_dest_source, params);
 }
 
 /// A label image the size of the source map (as `areamatch segment --labels`): each cell of a

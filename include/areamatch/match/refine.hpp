@@ -76,36 +76,79 @@ struct RefineParams {
 
 namespace detail {
 
-/// Visits the cells within `bounds` on the edge of a region (a cell inside with a 4-neighbour
-/// outside or off the grid), at most one per `spacing_m` square, in scan order: `take(index,
-/// world)` gets the cell's row-major index and world position and returns whether it took it
-/// (the square is then used up). `inside(index)` tells whether a cell is in the region.
-template <class Inside, class Take>
-void for_each_edge_cell(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m, Take take) {
-  const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
-  const int bins_x = (g.width + step - 1) / step;
-  std::vector<std::uint8_t> taken(static_cast<std::size_t>(bins_x) * static_cast<std::size_t>((g.height + step - 1) / step), 0);
-  auto index_of = [&](int x, int y) { return static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) + static_cast<std::size_t>(x); };
-  auto in = [&](int x, int y) { return x >= 0 && y >= 0 && x < g.width && y < g.height && inside(index_of(x, y)); };
-  const Eigen::Affine2d world = g.world_from_pixel();
-  for (int y = bounds.row0; y < bounds.row1; ++y) {
-    for (int x = bounds.col0; x < bounds.col1; ++x) {
-      if (!in(x, y)) continue;
-      if (in(x - 1, y) && in(x + 1, y) && in(x, y - 1) && in(x, y + 1)) continue;
-      auto& bin = taken[static_cast<std::size_t>(y / step) * static_cast<std::size_t>(bins_x) + static_cast<std::size_t>(x / step)];
-      if (bin) continue;
-      if (take(index_of(x, y), Eigen::Vector2d(world * Eigen::Vector2d(x, y)))) bin = 1;
+/// The cells within `bounds` on the edge of a region (a cell inside with a 4-neighbour outside
+/// or off the grid), as row-major indices in scan order. `inside(index)` tells whether a cell
+/// is in the region; it is asked once per cell of `bounds` and the ring around it (the
+/// neighbours of border cells count whether or not they lie in `bounds`), then the edge test
+/// reads a mask with a false border instead of checking the grid's bounds four times a cell.
+template <class Inside>
+std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds, Inside inside) {
+  std::vector<std::size_t> out;
+  if (bounds.empty()) return out;
+  const int x0 = bounds.col0 - 1, y0 = bounds.row0 - 1;
+  const int mask_w = bounds.col1 - bounds.col0 + 2, mask_h = bounds.row1 - bounds.row0 + 2;
+  const auto width = static_cast<std::size_t>(g.width);
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(mask_w) * static_cast<std::size_t>(mask_h), 0);
+  for (int my = 0; my < mask_h; ++my) {
+    const int y = y0 + my;
+    if (y < 0 || y >= g.height) continue;
+    std::uint8_t* row = mask.data() + static_cast<std::size_t>(my) * static_cast<std::size_t>(mask_w);
+    const std::size_t grid_row = static_cast<std::size_t>(y) * width;
+    const int mx_end = std::min(mask_w, g.width - x0);
+    for (int mx = std::max(0, -x0); mx < mx_end; ++mx) row[mx] = inside(grid_row + static_cast<std::size_t>(x0 + mx)) ? 1 : 0;
+  }
+  for (int my = 1; my + 1 < mask_h; ++my) {
+    const std::uint8_t* row = mask.data() + static_cast<std::size_t>(my) * static_cast<std::size_t>(mask_w);
+    const std::uint8_t* above = row - mask_w;
+    const std::uint8_t* below = row + mask_w;
+    const std::size_t grid_row = static_cast<std::size_t>(y0 + my) * width;
+    for (int mx = 1; mx + 1 < mask_w; ++mx) {
+      if (!row[mx] || (row[mx - 1] & row[mx + 1] & above[mx] & below[mx])) continue;
+      out.push_back(grid_row + static_cast<std::size_t>(x0 + mx));
     }
+  }
+  return out;
+}
+
+/// Visits the edge cells `cells` (from `edge_cells`: in scan order, so the first and last are in
+/// the top and bottom rows), at most one per `spacing_m`
+/// square: `take(index, world)` gets the cell's row-major index and world position and returns
+/// whether it took it (the square is then used up).
+template <class Take>
+void for_each_edge_cell(const GridInfo& g, const std::vector<std::size_t>& cells, double spacing_m, Take take) {
+  if (cells.empty()) return;
+  const int step = std::max(1, static_cast<int>(std::lround(spacing_m / g.resolution)));
+  const auto width = static_cast<std::size_t>(g.width);
+  // The squares are the grid's (row and column divided by `step`); only those the cells span get a flag.
+  int bin_x0 = std::numeric_limits<int>::max(), bin_x1 = 0;
+  for (const std::size_t i : cells) {
+    bin_x0 = std::min(bin_x0, static_cast<int>(i % width) / step);
+    bin_x1 = std::max(bin_x1, static_cast<int>(i % width) / step);
+  }
+  const int bin_y0 = static_cast<int>(cells.front() / width) / step, bin_y1 = static_cast<int>(cells.back() / width) / step;
+  const auto bins_x = static_cast<std::size_t>(bin_x1 - bin_x0 + 1);
+  std::vector<std::uint8_t> taken(bins_x * static_cast<std::size_t>(bin_y1 - bin_y0 + 1), 0);
+  const Eigen::Affine2d world = g.world_from_pixel();
+  for (const std::size_t i : cells) {
+    const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+    auto& bin = taken[static_cast<std::size_t>(y / step - bin_y0) * bins_x + static_cast<std::size_t>(x / step - bin_x0)];
+    if (bin) continue;
+    if (take(i, Eigen::Vector2d(world * Eigen::Vector2d(x, y)))) bin = 1;
   }
 }
 
-/// World positions of the edge cells of a region (`for_each_edge_cell`), then thinned evenly to
-/// at most `max_points`.
-template <class Inside>
-std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m,
-                                             std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+/// `for_each_edge_cell` over the edge cells of the region `inside` within `bounds`.
+template <class Inside, class Take>
+void for_each_edge_cell(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m, Take take) {
+  for_each_edge_cell(g, edge_cells(g, bounds, inside), spacing_m, take);
+}
+
+/// World positions of edge cells (from `edge_cells`) at most one per `spacing_m` square, then
+/// thinned evenly to at most `max_points`.
+inline std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const std::vector<std::size_t>& cells, double spacing_m,
+                                                    std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
   std::vector<Eigen::Vector2d> points;
-  for_each_edge_cell(g, bounds, inside, spacing_m, [&](std::size_t, const Eigen::Vector2d& p) {
+  for_each_edge_cell(g, cells, spacing_m, [&](std::size_t, const Eigen::Vector2d& p) {
     points.push_back(p);
     return true;
   });
@@ -118,20 +161,24 @@ std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const PixelBound
   return points;
 }
 
-/// Edge points of a map's free space (what the reference scorer's boundary is made of) within
-/// the extent of its areas: free streaks far outside the building do not count.
+/// The edge cells of a map's free space (what the reference scorer's boundary is made of)
+/// within the extent of its areas: free streaks far outside the building do not count.
+inline std::vector<std::size_t> free_edge_cells(const OccupancyGrid& grid, const AreaGraph& graph) {
+  const auto& cells = grid.cells();
+  return edge_cells(graph.grid, label_bounds(graph), [&](std::size_t i) { return cells[i] == CellState::free; });
+}
+
+/// Edge points of a map's free space within the extent of its areas (`free_edge_cells`).
 inline std::vector<Eigen::Vector2d> free_boundary_points(const OccupancyGrid& grid, const AreaGraph& graph, double spacing_m,
                                                          std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
-  const auto& cells = grid.cells();
-  return boundary_points(graph.grid, label_bounds(graph), [&](std::size_t i) { return cells[i] == CellState::free; },
-                         spacing_m, max_points);
+  return boundary_points(graph.grid, free_edge_cells(grid, graph), spacing_m, max_points);
 }
 
 /// Edge points of the area-covered free space.
 inline std::vector<Eigen::Vector2d> area_boundary_points(const AreaGraph& graph, double spacing_m,
                                                          std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
-  return boundary_points(graph.grid, label_bounds(graph), [&](std::size_t i) { return graph.labels[i] >= 0; }, spacing_m,
-                         max_points);
+  const auto cells = edge_cells(graph.grid, label_bounds(graph), [&](std::size_t i) { return graph.labels[i] >= 0; });
+  return boundary_points(graph.grid, cells, spacing_m, max_points);
 }
 
 }  // namespace detail
@@ -210,39 +257,40 @@ class BoundaryLookup {
   /// (left, above-left, above, above-right going down), then a sweep the other way along the row.
   void propagate() {
     const int W = width_, H = height_;
+    std::vector<double> centres_x(static_cast<std::size_t>(W)), row_best(static_cast<std::size_t>(W));
+    for (int x = 0; x < W; ++x) centres_x[static_cast<std::size_t>(x)] = centre_x(x);
     auto row = [&](int y) { return nearest_.data() + index(0, y); };
-    auto distance = [&](int slot, double cx, double cy) {
-      return slot < 0 ? 0.0 : squared_distance(points_[static_cast<std::size_t>(slot)], cx, cy);
-    };
-    // `other` is the row visited before this one (above going down, below going up), or null.
-    auto pass = [&](int y, const int* other, bool down) {
-      int* cells = row(y);
-      const double cy = centre_y(y);
-      const int first = down ? 0 : W - 1, step = down ? 1 : -1;
-      for (int x = first; x >= 0 && x < W; x += step) {
-        int& slot = cells[x];
-        const double cx = centre_x(x);
-        double best = distance(slot, cx, cy);
-        const int back = x - step, ahead = x + step;
-        const bool has_back = back >= 0 && back < W, has_ahead = ahead >= 0 && ahead < W;
-        if (has_back) consider(slot, best, cells[back], cx, cy);
-        if (other) {
-          consider(slot, best, other[x], cx, cy);
-          if (has_back) consider(slot, best, other[back], cx, cy);
-          if (has_ahead) consider(slot, best, other[ahead], cx, cy);
-        }
+    for (int y = 0; y < H; ++y) sweep_row<1>(row(y), y > 0 ? row(y - 1) : nullptr, centre_y(y), centres_x, row_best);
+    for (int y = H - 1; y >= 0; --y) sweep_row<-1>(row(y), y + 1 < H ? row(y + 1) : nullptr, centre_y(y), centres_x, row_best);
+  }
+
+  /// One row of a pass (`Step` 1 going down, −1 going up); `other` is the row visited before this
+  /// one (above going down, below going up), or null. A cell's squared distance to its point,
+  /// found in the first sweep, is kept in `row_best` for the second.
+  template <int Step>
+  void sweep_row(int* cells, const int* other, double cy, const std::vector<double>& centres_x, std::vector<double>& row_best) const {
+    const int W = width_;
+    const int first = Step > 0 ? 0 : W - 1, last = Step > 0 ? W - 1 : 0;
+    auto visit = [&](int x, bool has_back, bool has_ahead) {
+      int& slot = cells[x];
+      const double cx = centres_x[static_cast<std::size_t>(x)];
+      double best = slot < 0 ? 0.0 : squared_distance(points_[static_cast<std::size_t>(slot)], cx, cy);
+      if (has_back) consider(slot, best, cells[x - Step], cx, cy);
+      if (other) {
+        consider(slot, best, other[x], cx, cy);
+        if (has_back) consider(slot, best, other[x - Step], cx, cy);
+        if (has_ahead) consider(slot, best, other[x + Step], cx, cy);
       }
-      for (int x = W - 1 - first; x >= 0 && x < W; x -= step) {
-        const int ahead = x + step;
-        if (ahead < 0 || ahead >= W) continue;
-        int& slot = cells[x];
-        const double cx = centre_x(x);
-        double best = distance(slot, cx, cy);
-        consider(slot, best, cells[ahead], cx, cy);
-      }
+      row_best[static_cast<std::size_t>(x)] = best;
     };
-    for (int y = 0; y < H; ++y) pass(y, y > 0 ? row(y - 1) : nullptr, true);
-    for (int y = H - 1; y >= 0; --y) pass(y, y + 1 < H ? row(y + 1) : nullptr, false);
+    visit(first, false, first != last);
+    if (first != last) {
+      for (int x = first + Step; x != last; x += Step) visit(x, true, true);  // the ends peeled off: no bounds tests
+      visit(last, true, false);
+    }
+    for (int x = last - Step; x != first - Step; x -= Step) {
+      consider(cells[x], row_best[static_cast<std::size_t>(x)], cells[x + Step], centres_x[static_cast<std::size_t>(x)], cy);
+    }
   }
 
   /// Per point, the direction of least spread of the points within `radius` (2×2 covariance):
