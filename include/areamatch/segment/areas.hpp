@@ -22,6 +22,7 @@
 #include "rooms.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <limits>
@@ -197,6 +198,12 @@ inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const Ro
   return barrier_cells;
 }
 
+/// Index offsets of a cell's right, left, lower and upper neighbours in a row-major image `W`
+/// cells wide (callers keep off the image's border).
+inline std::array<std::ptrdiff_t, 4> four_neighbour_offsets(int W) {
+  return {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+}
+
 /// Step 2: grows every region from its skeleton samples, 4-connected: first over the core, then
 /// `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only that
 /// far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
@@ -216,7 +223,7 @@ inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int
     label[i] = region;
     queue.push_back(static_cast<std::uint32_t>(i));
   }
-  const std::ptrdiff_t neighbour_offset[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+  const auto neighbour_offset = four_neighbour_offsets(W);
   // Breadth-first growth; into_fringe grows one step (one ring of cells) per call. Over the core,
   // a cell is taken out of `core` when it is labelled, so `core` alone says what is still open.
   auto grow = [&](std::vector<std::uint32_t>& frontier, bool into_fringe) {
@@ -268,7 +275,7 @@ inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int
 
 /// Step 3: each barrier cell joins the region most of its neighbours belong to (ties: the lower id).
 inline void assign_barrier_cells(const std::vector<std::uint32_t>& barrier_cells, int W, std::vector<int>& label) {
-  const std::ptrdiff_t neighbour_offset[4] = {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+  const auto neighbour_offset = four_neighbour_offsets(W);
   auto majority_of_neighbours = [&](std::size_t i) {
     int candidates[4], votes[4], count = 0;
     for (std::ptrdiff_t d : neighbour_offset) {
@@ -360,11 +367,17 @@ inline Pieces find_pieces(LabelRuns& labelled) {
   return pieces;
 }
 
+/// What merging small pieces leaves: the areas.
+struct PieceAreas {
+  std::vector<int> area_of_piece;  ///< per piece: its area, −1 when dropped
+  int area_count = 0;
+};
+
 /// Step 6: repeatedly, the smallest piece below `min_cells` joins the neighbour it shares the
 /// longest border with (union-find over pieces; borders counted once); a small piece with no
 /// neighbour is dropped. The surviving pieces are the areas, numbered in raster order of their
-/// first run; each run's `label` becomes its area (−1: dropped). Returns each piece's area.
-inline std::vector<int> merge_small_pieces(LabelRuns& labelled, const Pieces& pieces, std::size_t min_cells, int& area_count) {
+/// first run; each run's `label` becomes its area (−1: dropped).
+inline PieceAreas merge_small_pieces(LabelRuns& labelled, const Pieces& pieces, std::size_t min_cells) {
   auto& runs = labelled.runs;
   const auto& row_start = labelled.row_start;
   const std::size_t piece_count = pieces.size.size();
@@ -422,7 +435,7 @@ inline std::vector<int> merge_small_pieces(LabelRuns& labelled, const Pieces& pi
     if (size[target] < min_cells) small.push({size[target], target});
   }
   std::vector<int> area_of_root(piece_count, -1);
-  area_count = 0;
+  int area_count = 0;
   for (auto& run : runs) {
     const int root = find(run.piece);
     if (dropped[root]) {
@@ -437,7 +450,7 @@ inline std::vector<int> merge_small_pieces(LabelRuns& labelled, const Pieces& pi
     const int root = find(static_cast<int>(p));
     if (!dropped[root]) area_of_piece[p] = area_of_root[root];
   }
-  return area_of_piece;
+  return {std::move(area_of_piece), area_count};
 }
 
 /// Step 7: which skeleton region became which area: the area holding most of the region's cells
@@ -619,12 +632,11 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
 
   detail::LabelRuns runs = detail::label_runs(space, label);
   const detail::Pieces pieces = detail::find_pieces(runs);
-  int area_count = 0;
   const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
-  const std::vector<int> area_of_piece = detail::merge_small_pieces(runs, pieces, min_cells, area_count);
-  const std::vector<int> area_of_region = detail::area_of_regions(rooms.region_count(), pieces, area_of_piece);
+  const detail::PieceAreas areas = detail::merge_small_pieces(runs, pieces, min_cells);
+  const std::vector<int> area_of_region = detail::area_of_regions(rooms.region_count(), pieces, areas.area_of_piece);
 
-  detail::trace_areas(runs, W, H, res, to_world, area_count, label, graph);
+  detail::trace_areas(runs, W, H, res, to_world, areas.area_count, label, graph);
   detail::measure_areas(rooms, area_of_region, res, params, graph);
   detail::add_passages(rooms, area_of_region, res, to_world, graph);
   detail::write_labels(grid, space, runs, std::move(label), graph);
