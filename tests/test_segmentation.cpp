@@ -618,7 +618,7 @@ TEST_CASE("robot maps with furniture and noise: rooms still found (tolerance 10 
     for (const auto& area : building.areas) {
       if (area.corridor) continue;
       ++rooms;
-      Point2 centre;
+      Point2 centre(0.0, 0.0);
       bg::centroid(area.polygon, centre);
       const Eigen::Vector2d p = robot.T_dest_source.inverse() * to_vector(centre);
       const Eigen::Vector2i cell = robot.grid.world_to_cell(p);

@@ -38,9 +38,14 @@ inline std::string shared_dir() {
   return "";
 }
 
-/// A fresh folder for this test executable's files.
-inline std::string temp_dir() {
-  const std::string dir = AREAMATCH_TEST_TMP;
+/// A folder for the files of the test file that calls it (`file`: the caller's, by default), so
+/// that test files run in parallel from one program never write to the same place.
+inline std::string temp_dir(const char* file = __builtin_FILE()) {
+  std::string name = file;
+  name = name.substr(name.find_last_of('/') + 1);
+  name = name.substr(0, name.find('.'));
+  const std::string root = AREAMATCH_TEST_TMP, dir = root + "/" + name;
+  ::mkdir(root.c_str(), 0755);
   ::mkdir(dir.c_str(), 0755);
   return dir;
 }
