@@ -5,8 +5,8 @@
 # finds a crash, a sanitizer report, a leak, an input slower than 10 s or one using more than
 # 2 GB. Turn every finding into a regression test: copy it into fuzz/regressions/<target>/,
 # where the test suite replays it (ctest -L fuzz).
-# The random seed is fixed (AREAMATCH_FUZZ_SEED, default 1) so that a CI run can be repeated
-# exactly; set it to 0 for a fresh seed each run when fuzzing for long.
+# The random seed is fixed (AREAMATCH_FUZZ_SEED, default 1); set it to 0 for a fresh seed each
+# run when fuzzing for long. The targets run AREAMATCH_FUZZ_JOBS at a time (default: one per core).
 #   scripts/fuzz.sh [SECONDS] [TARGET...]      targets: fuzz_image fuzz_yaml fuzz_segment fuzz_match
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -33,18 +33,40 @@ cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DA
 cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
 
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
+# The targets run side by side, one per core (each still fuzzes for SECONDS); their reports
+# follow in target order.
+fuzz_one() {
+  local t="$1"
+  mkdir -p "$build/corpus/$t" "$build/findings/$t"
+  if "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -seed="${AREAMATCH_FUZZ_SEED:-1}" -timeout=10 \
+       -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$build/findings/$t/" -print_final_stats=1 \
+       2> "$build/$t.log"; then
+    echo 0 > "$build/$t.status"
+  else
+    echo 1 > "$build/$t.status"
+  fi
+}
+jobs="${AREAMATCH_FUZZ_JOBS:-$(nproc)}"
+running=0
+for t in "${targets[@]}"; do
+  rm -f "$build/$t.status"
+  echo "== $t: ${seconds} s"
+  fuzz_one "$t" &
+  running=$((running + 1))
+  if [ "$running" -ge "$jobs" ]; then
+    wait -n || true
+    running=$((running - 1))
+  fi
+done
+wait || true
 status=0
 for t in "${targets[@]}"; do
-  mkdir -p "$build/corpus/$t" "$build/findings/$t"
-  echo "== $t: ${seconds} s"
-  if ! "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -seed="${AREAMATCH_FUZZ_SEED:-1}" -timeout=10 \
-        -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$build/findings/$t/" -print_final_stats=1 \
-        2> "$build/$t.log"; then
+  if [ "$(cat "$build/$t.status" 2>/dev/null)" != 0 ]; then
     status=1
     echo "$t: FINDING (see $build/$t.log and $build/findings/$t/)"
     grep -E "ERROR|SUMMARY|Test unit written" "$build/$t.log" | head -5 || true
   else
-    grep -E "stat::number_of_executed_units|cov:" "$build/$t.log" | tail -2 || true
+    echo "$t: $(grep -E "stat::number_of_executed_units|cov:" "$build/$t.log" | tail -2 | tr '\n' ' ')"
   fi
 done
 exit $status
