@@ -56,9 +56,9 @@ struct CorrespondenceParams {
 namespace detail {
 
 /// Per area: the free-space edge points (walls, furniture) of its cells, about `spacing_m` apart,
-/// from the free-space edge cells `free_edge` (`free_edge_cells`, or any superset of the edge
-/// within the areas' extent, in scan order). The cuts at passages are not edges of the free
-/// space, so they are not included.
+/// from the free-space edge cells `free_edge` (`edge_cells`, in scan order; those outside the
+/// areas' extent are passed over). The cuts at passages are not edges of the free space, so they
+/// are not included.
 inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const AreaGraph& graph, const std::vector<std::size_t>& free_edge,
                                                                   double spacing_m) {
   std::vector<std::vector<Eigen::Vector2d>> out(graph.areas.size());

@@ -111,9 +111,9 @@ std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds
 }
 
 /// Visits the edge cells `cells` (from `edge_cells`: in scan order, so the first and last are in
-/// the top and bottom rows), at most one per `spacing_m`
-/// square: `take(index, world)` gets the cell's row-major index and world position and returns
-/// whether it took it (the square is then used up).
+/// the top and bottom rows), at most one per `spacing_m` square: `take(index, world)` gets the
+/// cell's row-major index and world position and returns whether it took it (the square is then
+/// used up).
 template <class Take>
 void for_each_edge_cell(const GridInfo& g, const std::vector<std::size_t>& cells, double spacing_m, Take take) {
   if (cells.empty()) return;
@@ -135,12 +135,6 @@ void for_each_edge_cell(const GridInfo& g, const std::vector<std::size_t>& cells
     if (bin) continue;
     if (take(i, Eigen::Vector2d(world * Eigen::Vector2d(x, y)))) bin = 1;
   }
-}
-
-/// `for_each_edge_cell` over the edge cells of the region `inside` within `bounds`.
-template <class Inside, class Take>
-void for_each_edge_cell(const GridInfo& g, const PixelBounds& bounds, Inside inside, double spacing_m, Take take) {
-  for_each_edge_cell(g, edge_cells(g, bounds, inside), spacing_m, take);
 }
 
 /// World positions of edge cells (from `edge_cells`) at most one per `spacing_m` square, then
