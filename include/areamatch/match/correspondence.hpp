@@ -143,11 +143,9 @@ inline std::vector<MatchedAreaPair> area_correspondences(const OccupancyGrid& so
                                                          const Similarity2& T_dest_source,
                                                          const CorrespondenceParams& params) {
   params.validate();
-  const auto& cells = source_grid.cells();
-  const auto free_edge = detail::edge_cells(source.grid, label_bounds(source, 0),
-                                            [&](std::size_t i) { return cells[i] == CellState::free; });
-  return detail::area_correspondences(detail::area_wall_points(source, free_edge, params.local.point_spacing_m), source, dest,
-                                      source_raster, dest_raster, dest_edge, T_dest_source, params);
+  return detail::area_correspondences(
+      detail::area_wall_points(source, detail::free_edge_cells(source_grid, source), params.local.point_spacing_m), source,
+      dest, source_raster, dest_raster, dest_edge, T_dest_source, params);
 }
 
 /// A label image the size of the source map (as `areamatch segment --labels`): each cell of a

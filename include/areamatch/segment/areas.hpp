@@ -118,6 +118,12 @@ inline long long signed_area2(const std::vector<LatticePoint>& ring) {
   return sum;
 }
 
+/// Index offsets of a cell's right, left, lower and upper neighbours in a row-major image `W`
+/// cells wide (callers keep off the image's border).
+inline std::array<std::ptrdiff_t, 4> four_neighbour_offsets(int W) {
+  return {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+}
+
 /// The first step of labelling, done on runs instead of cells. `label` holds only the seeds
 /// (listed in `seeds`); growth from them runs over the cells of `core` (barrier cells already
 /// taken out), 4-connected. A connected piece of the core that the seeds of just one region touch
@@ -142,7 +148,7 @@ inline void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<i
     if (touch(seed, region)) continue;
     // A seed off the passable cells grows into every passable neighbour. Seeds are free cells
     // and the mask's border is obstacle, so all four neighbours exist.
-    for (std::ptrdiff_t d : {std::ptrdiff_t{1}, std::ptrdiff_t{-1}, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)}) {
+    for (std::ptrdiff_t d : four_neighbour_offsets(W)) {
       touch(static_cast<std::size_t>(static_cast<std::ptrdiff_t>(seed) + d), region);
     }
   }
@@ -196,12 +202,6 @@ inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const Ro
   }
   std::sort(barrier_cells.begin(), barrier_cells.end());
   return barrier_cells;
-}
-
-/// Index offsets of a cell's right, left, lower and upper neighbours in a row-major image `W`
-/// cells wide (callers keep off the image's border).
-inline std::array<std::ptrdiff_t, 4> four_neighbour_offsets(int W) {
-  return {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
 }
 
 /// Step 2: grows every region from its skeleton samples, 4-connected: first over the core, then
