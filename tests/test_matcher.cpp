@@ -450,7 +450,8 @@ TEST_CASE("policy concepts: the library's policies conform") {
   static_assert(feature_has_segments_v<HullDiameter> && !feature_has_segments_v<AreaSize>);
   static_assert(is_weights_v<PaperWeights, 3> && !is_weights_v<PaperWeights, 4>);
   static_assert(is_clusterer_v<AngularClusterer> && is_clusterer_v<PoseClusterer>);
-  static_assert(!is_clusterer_v<int> && !is_feature_v<int>);
+  static_assert(is_selection_v<WholeMapSelection> && is_selection_v<LargestClusterSelection>);
+  static_assert(!is_clusterer_v<int> && !is_feature_v<int> && !is_selection_v<int>);
   CHECK(true);
 }
 
@@ -674,19 +675,32 @@ TEST_CASE("the raster overlap estimates the exact polygon overlap (the paper's O
   CHECK(filter_disagreements <= compared / 100);
 }
 
+namespace {
+/// The smallest selection policy (match/selection.hpp's example): the best cluster's best member.
+struct FirstClusterSelection {
+  Selected select(const SelectionInputs& in, MatchStatistics&) const {
+    Selected out;
+    if (in.clusters.empty()) return out;
+    const int best = in.clusters.front().members.front();
+    out.finalists.push_back({in.hypotheses[static_cast<std::size_t>(best)].T_dest_source, 0.0});
+    return out;
+  }
+};
+}  // namespace
+
 TEST_CASE("every clusterer with every selection, through the same synthetic cases") {
-  // The two clusterers (PoseClusterer, AngularClusterer) and the two selections (whole_map,
-  // largest_cluster) compose freely: every composition runs, deterministically. The default
-  // (PoseClusterer + whole_map) is right on every case. Measured on the 8 cases: AngularClusterer
-  // + whole_map 4 (a cluster per rotation keeps one candidate per rotation, whatever its
-  // translation: the whole-map check needs pose clusters), PoseClusterer + largest_cluster 8 (our
-  // hypotheses and pose clusters carry the paper's selection here), AngularClusterer +
-  // largest_cluster 5 (the paper's clustering).
+  // The two clusterers (PoseClusterer, AngularClusterer) and the selections (WholeMapSelection,
+  // LargestClusterSelection, and one of our own) compose freely: every composition runs,
+  // deterministically. The default (PoseClusterer + whole map) is right on every case. Measured
+  // on the 8 cases: AngularClusterer + whole map 4 (a cluster per rotation keeps one candidate
+  // per rotation, whatever its translation: the whole-map check needs pose clusters),
+  // PoseClusterer + largest cluster 8 (our hypotheses and pose clusters carry the paper's
+  // selection here), AngularClusterer + largest cluster 5 (the paper's clustering).
+  static_assert(is_selection_v<FirstClusterSelection> && !is_selection_v<PoseClusterer>);
   const CorrectnessThresholds thresholds{3.0, 0.5};
   const std::uint64_t cases = areamatch_test::quick_tests() ? 3 : 8;
-  auto run = [&](auto matcher, Selection selection) {
+  auto run = [&](auto matcher) {
     matcher.params.allow_reflection = true;
-    matcher.params.selection = selection;
     int right = 0;
     for (std::uint64_t seed = 200; seed < 200 + cases; ++seed) {
       const auto c = areamatch_test::synthetic_case(seed);
@@ -701,15 +715,23 @@ TEST_CASE("every clusterer with every selection, through the same synthetic case
     }
     return right;
   };
-  using AngularMatcher = Matcher<VoronoiSegmenter, PaperFeatures, PaperWeights, AngularClusterer>;
-  const int pose_whole = run(Matcher<>{}, Selection::whole_map);
-  const int angular_whole = run(AngularMatcher{}, Selection::whole_map);
-  const int pose_largest = run(Matcher<>{}, Selection::largest_cluster);
-  const int angular_largest = run(AngularMatcher{}, Selection::largest_cluster);
+  using Features = PaperFeatures;
+  using Weights = PaperWeights;
+  using AngularWhole = Matcher<VoronoiSegmenter, Features, Weights, AngularClusterer, WholeMapSelection>;
+  using PoseLargest = Matcher<VoronoiSegmenter, Features, Weights, PoseClusterer, LargestClusterSelection>;
+  using AngularLargest = Matcher<VoronoiSegmenter, Features, Weights, AngularClusterer, LargestClusterSelection>;
+  using PoseFirst = Matcher<VoronoiSegmenter, Features, Weights, PoseClusterer, FirstClusterSelection>;
+  const int pose_whole = run(Matcher<>{});
+  const int angular_whole = run(AngularWhole{});
+  const int pose_largest = run(PoseLargest{});
+  const int angular_largest = run(AngularLargest{});
+  const int pose_first = run(PoseFirst{});
   MESSAGE("right of " << cases << ": pose + whole map " << pose_whole << ", angular + whole map " << angular_whole
-                      << ", pose + largest cluster " << pose_largest << ", angular + largest cluster " << angular_largest);
+                      << ", pose + largest cluster " << pose_largest << ", angular + largest cluster " << angular_largest
+                      << ", pose + first cluster (ours) " << pose_first);
   CHECK(pose_whole == static_cast<int>(cases));
   CHECK(angular_whole >= 1);
   CHECK(pose_largest >= 1);
   CHECK(angular_largest >= 1);
+  CHECK(pose_first >= 1);
 }

@@ -1,7 +1,7 @@
 // A user's project: builds a synthetic building, saves and reloads it (the headers and the io
 // target link), then matches a robot map of it onto its layout from files with a matcher whose
-// every policy is the user's own — segmenter, feature set with a feature of its own, weights and
-// clusterer — through the installed io/match_files.hpp.
+// every policy is the user's own — segmenter, feature set with a feature of its own, weights,
+// clusterer and selection — through the installed io/match_files.hpp.
 #include <areamatch/areamatch.hpp>
 #include <areamatch/io.hpp>
 #include <areamatch/io/match_files.hpp>
@@ -54,10 +54,22 @@ struct EveryHypothesis {
   }
 };
 
+// Selection: the stock whole-map verification, its mirrored finalists dropped (this user's maps
+// are never mirrored, whatever the matcher's parameters say).
+struct NeverMirrored {
+  areamatch::Selected select(const areamatch::SelectionInputs& in, areamatch::MatchStatistics& statistics) const {
+    areamatch::Selected out = areamatch::WholeMapSelection{}.select(in, statistics);
+    auto& finalists = out.finalists;
+    finalists.erase(std::remove_if(finalists.begin(), finalists.end(), [](const auto& f) { return f.T.reflected; }),
+                    finalists.end());
+    return out;
+  }
+};
+
 using MyMatcher = areamatch::Matcher<WideDoorSegmenter,
                                      areamatch::FeatureSet<areamatch::AreaSize, areamatch::PassageDistances,
                                                            areamatch::HullDiameter, WidestDisc>,
-                                     MyWeights, EveryHypothesis>;
+                                     MyWeights, EveryHypothesis, NeverMirrored>;
 
 }  // namespace
 

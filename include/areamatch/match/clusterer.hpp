@@ -14,9 +14,9 @@
 ///   }
 /// };
 /// \endcode
-/// What the matcher does with the clusters is its own choice (`MatcherParams::selection`): the
-/// paper takes the first (largest) cluster; our default verifies the best members of every cluster
-/// on the whole map, so there clustering only ranks and removes duplicates.
+/// What the matcher does with the clusters is the Selection policy's choice (match/selection.hpp):
+/// the paper's takes the first (largest) cluster; our default verifies the best members of every
+/// cluster on the whole map, so there clustering only ranks and removes duplicates.
 
 #include "../error.hpp"
 #include "../transform.hpp"

@@ -13,22 +13,14 @@
 
 #include <cmath>
 #include <cstddef>
-#include <cstdint>
 
 namespace areamatch {
-
-/// How a candidate transform is chosen among the clusters.
-enum class Selection : std::uint8_t {
-  largest_cluster,  ///< the paper: the largest cluster's member with the highest Σ OP over all pairs
-  whole_map         ///< ours: the best members of every cluster, verified on the whole map
-};
 
 struct MatcherParams {
   /// Mutual k-nearest neighbours. The paper's 3 kept ~15 % of the true pairs on SLAM-to-layout
   /// maps (docs/algorithm.md); 10 keeps ~42 %, and the verification stage rejects the rest.
   std::size_t k = 10;
   HypothesisParams hypotheses;
-  Selection selection = Selection::whole_map;
   /// Also try the mirror image of the source (image rows run down, map y up: mirrored pairs are
   /// common). Both sides are judged by the same score.
   bool allow_reflection = false;
@@ -44,7 +36,7 @@ struct MatcherParams {
   /// threads at once (the built-in ones are pure).
   unsigned threads = 1;
 
-  // Whole-map verification.
+  // Whole-map verification (`WholeMapSelection`, match/selection.hpp).
   double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
   double fine_cell_m = 0.25;            ///< raster cell for the finalists' IoU (0.1 measured no better)
   std::size_t members_per_cluster = 1;  ///< best members of each cluster that get verified
@@ -107,7 +99,8 @@ struct MatcherParams {
   std::size_t max_areas = 3000;
 
   /// The paper as written (docs/algorithm.md): k = 3, one rotation per pair from the passage pair
-  /// (or hull diameters), exact OP ≥ 0.5, the largest 3° cluster, Σ OP; no refinement.
+  /// (or hull diameters), exact OP ≥ 0.5; no refinement, no rejection. With `PaperMatcher`'s
+  /// AngularClusterer and LargestClusterSelection: the largest 3° cluster, its best member by Σ OP.
   static MatcherParams paper() {
     MatcherParams p;
     p.k = 3;
@@ -116,7 +109,6 @@ struct MatcherParams {
     p.hypotheses.wall_directions = false;
     p.hypotheses.min_area_overlap = 0.5;
     p.hypotheses.exact_overlap = true;
-    p.selection = Selection::largest_cluster;
     p.refine = false;
     p.min_score = 0.0;          // the paper has no rejection rule:
     p.min_agreement = 0.0;

@@ -4,7 +4,6 @@
 /// scores), not an exception; exceptions are for bad input.
 
 #include "../area_graph.hpp"
-#include "evidence.hpp"
 #include "../transform.hpp"
 
 #include <cmath>
@@ -14,6 +13,44 @@
 #include <vector>
 
 namespace areamatch {
+
+/// Agreement of the two maps under the result's transform; each in [0, 1], higher is better.
+struct MatchEvidence {
+  /// Share of the source's free-space edge within `wall_inlier_distance_m` of the destination's
+  /// (the whole-map score with the default weights).
+  double wall_agreement = 0.0;
+  /// Share of the destination's walls near the source's free space that lie on the source's
+  /// free-space edge: only where the source has been (a partial map is not penalised for what it
+  /// did not see), and walls only (free space ending at unknown cells is a frontier, not a wall).
+  double reverse_wall_agreement = 0.0;
+  /// The same for the source's walls near the destination's free space.
+  double forward_wall_agreement = 0.0;
+  /// IoU of the two maps' area-covered free space.
+  double free_iou = 0.0;
+  /// The area-covered free space the two maps share under the result, destination m².
+  double overlap_m2 = 0.0;
+  /// Share of the source's area-covered free space landing on the destination's, and back.
+  double source_on_dest = 0.0;
+  double dest_on_source = 0.0;
+  /// Share of the passages in the common part (both maps' free space) that have a counterpart in
+  /// the other map within `passage_distance_m`; NaN when the common part holds no passage.
+  double passage_agreement = 0.0;
+  /// Share of the common free space that lies in area pairs overlapping with IoU ≥ 0.5: whether
+  /// the two segmentations cut the common part into the same rooms.
+  double room_agreement = 0.0;
+  /// The number the decision uses (`MatcherParams::min_agreement`): (1 − w) · max(forward,
+  /// reverse wall agreement) + w · free_iou, w = `MatcherParams::agreement_iou_weight`. Where
+  /// both maps have been, one map's walls must all be walls of the other (the plainer map's: a
+  /// layout's walls are in a SLAM map, not the SLAM map's furniture in the layout); and the more
+  /// free space is shared, the surer that is.
+  double agreement = 0.0;
+  /// How far the answer stands out from its own quarter turns about the common part's centre
+  /// (and, with reflection allowed, its mirror images), each refined by ICP as the answer was:
+  /// the answer's better overlap-restricted wall agreement minus the best alternative's. In a
+  /// building of repeated rooms a wrong answer is often the right one turned; two different
+  /// buildings agree about as badly in every turn. NaN when not measured.
+  double turn_margin = std::numeric_limits<double>::quiet_NaN();
+};
 
 /// A source area, the destination area it corresponds to, and the area's own transform
 /// (see match/correspondence.hpp).

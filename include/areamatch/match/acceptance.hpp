@@ -1,0 +1,49 @@
+#pragma once
+/// \file match/acceptance.hpp
+/// The rule that sets `MatchResult::ok` (docs/matching.md, "the decision"): an answer is refused
+/// when its whole-map score is below `min_score`, when the maps agree too little and the
+/// calibrated model is not sure (`min_agreement`, `decision.accept_p_correct`), when the model
+/// finds it too likely wrong (`decision.min_p_correct`), or when a rival is too close
+/// (`min_confidence`).
+
+#include "../detail/format.hpp"
+#include "params.hpp"
+#include "result.hpp"
+
+#include <string>
+
+namespace areamatch::detail {
+
+/// Why the answer in `result` (margins, evidence and p_correct measured) is refused; empty when
+/// it is accepted. `score_gate`: its score is on the whole-map scale that `min_score` applies to.
+inline std::string refusal(const MatchResult& result, const MatcherParams& params, bool score_gate) {
+  if (score_gate && result.score < params.min_score) {
+    return "best whole-map score " + format_fixed(result.score, 3) + " is below min_score " +
+           format_double(params.min_score) + ": the maps do not match";
+  }
+  const MatchEvidence& evidence = result.evidence;
+  const bool model_sure = result.p_correct >= params.decision.accept_p_correct;
+  if (evidence.agreement < params.min_agreement && !model_sure) {
+    return "the maps agree too little under the best transform to be the same building: agreement " +
+           format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(params.min_agreement) +
+           " (the destination's walls near the source's free space explained: " +
+           format_fixed(evidence.reverse_wall_agreement, 3) + ", the source's near the destination's: " +
+           format_fixed(evidence.forward_wall_agreement, 3) + ", free-space IoU " + format_fixed(evidence.free_iou, 3) +
+           "; p_correct " + format_fixed(result.p_correct, 3) + " < accept_p_correct " +
+           format_double(params.decision.accept_p_correct) + ")";
+  }
+  if (result.p_correct < params.decision.min_p_correct) {
+    return "the answer is too likely wrong: p_correct " + format_fixed(result.p_correct, 3) + " < min_p_correct " +
+           format_double(params.decision.min_p_correct) + " (wall agreement " +
+           format_fixed(evidence.forward_wall_agreement, 3) + " / " + format_fixed(evidence.reverse_wall_agreement, 3) +
+           ", rooms " + format_fixed(evidence.room_agreement, 3) + ", margin " + format_fixed(result.confidence, 3) +
+           ", overlap " + format_fixed(evidence.overlap_m2, 1) + " m²)";
+  }
+  if (result.confidence < params.min_confidence) {
+    return "ambiguous: a different transform scores within " + format_fixed(result.confidence, 3) +
+           " of the best (min_confidence " + format_double(params.min_confidence) + ")";
+  }
+  return "";
+}
+
+}  // namespace areamatch::detail

@@ -1,0 +1,102 @@
+#pragma once
+/// \file match/map_data.hpp
+/// What matching builds from one map alone, the same whichever side the map is on: the
+/// features' descriptors, coarse and fine rasters, the wall direction, the free-space edge and
+/// its lookup. Built once per map by `Matcher::prepare` (or per match), never per pair.
+
+#include "../area_graph.hpp"
+#include "../grid.hpp"
+#include "evidence.hpp"
+#include "hypotheses.hpp"
+#include "params.hpp"
+#include "raster.hpp"
+#include "refine.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cstddef>
+#include <optional>
+#include <type_traits>
+#include <vector>
+
+namespace areamatch::detail {
+
+template <class Descriptors>
+struct MapData {
+  Descriptors descriptors;                   ///< the Features policy's, per area
+  AreaRaster coarse;                         ///< area-covered free space on coarse cells
+  std::optional<AreaRaster> fine_own;        ///< on fine cells, when they differ from the coarse ones
+  double wall_direction = 0.0;               ///< for wall-direction hypotheses
+  std::vector<Eigen::Vector2d> edge_points;  ///< sparse free-space edge: what moves (ICP, scores)
+  std::vector<Eigen::Vector2d> walls;        ///< edge_points without frontiers
+  std::vector<std::size_t> free_edge;        ///< the free-space edge cells (`detail::free_edge_cells`)
+  BoundaryLookup lookup;                     ///< dense free-space edge: what is landed on
+  const AreaRaster& fine() const { return fine_own ? *fine_own : coarse; }
+};
+
+/// One map as matching reads it; `data` null: not built yet (or the map has no areas).
+template <class Descriptors>
+struct MapView {
+  const OccupancyGrid* grid;
+  const AreaGraph* graph;
+  const MapData<Descriptors>* data;
+};
+
+/// The parameters that shape `MapData`: a prepared map serves the matchers that agree on them.
+struct MapDataKey {
+  double coarse_cell_m = 0.0, fine_cell_m = 0.0, point_spacing_m = 0.0, lookup_cell_m = 0.0, margin_m = 0.0,
+         normal_radius_m = 0.0;
+  int max_points = 0;
+  bool wall_directions = false;
+  WallDirectionParams wall_direction;
+  bool operator==(const MapDataKey& o) const {
+    return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
+           lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
+           max_points == o.max_points && wall_directions == o.wall_directions && wall_direction == o.wall_direction;
+  }
+};
+
+/// The lookups reach this far beyond the edges: every distance they are asked about.
+inline double lookup_margin(const MatcherParams& params) {
+  const auto& gates = params.refinement.gates_m;
+  const auto& sweep_gates = params.scale.sweep_gates_m;
+  return std::max({*std::max_element(gates.begin(), gates.end()), *std::max_element(sweep_gates.begin(), sweep_gates.end()),
+                   params.wall_inlier_distance_m, params.candidate_wall_distance_m});
+}
+
+/// The key of the data `params` builds; `normals`: the lookup carries normals (needed by the
+/// destination's for point-to-line ICP, not by the source's).
+inline MapDataKey map_data_key(const MatcherParams& params, bool normals) {
+  const RefineParams& r = params.refinement;
+  return {params.coarse_cell_m, params.fine_cell_m, r.point_spacing_m, r.lookup_cell_m, lookup_margin(params),
+          normals && r.point_to_line ? r.normal_radius_m : 0.0, r.max_points, params.hypotheses.wall_directions,
+          params.hypotheses.wall_direction};
+}
+
+/// What matching builds from one map alone, with the Features policy `features`.
+template <class Features>
+auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Features& features,
+                    const MatcherParams& params, bool normals) {
+  const RefineParams& r = params.refinement;
+  MapData<std::decay_t<decltype(features.describe(graph))>> d;
+  d.descriptors = features.describe(graph);
+  d.coarse = make_area_raster(graph, params.coarse_cell_m);
+  if (params.fine_cell_m != params.coarse_cell_m) d.fine_own = make_area_raster(graph, params.fine_cell_m);
+  if (params.hypotheses.wall_directions) d.wall_direction = dominant_wall_direction(graph, params.hypotheses.wall_direction);
+  d.free_edge = free_edge_cells(grid, graph);  // found once: thinned for the points, the lookup, the rooms' walls
+  d.edge_points = boundary_points(graph.grid, d.free_edge, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
+  d.walls = without_frontiers(grid, d.edge_points);
+  d.lookup = BoundaryLookup(boundary_points(graph.grid, d.free_edge, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
+                            lookup_margin(params), normals && r.point_to_line ? r.normal_radius_m : 0.0);
+  return d;
+}
+
+/// The free-space edges of both maps, each as sparse points (what moves) and a dense lookup
+/// (what is landed on), so that scores and evidence can look both ways.
+template <class Descriptors>
+MapEdges map_edges(const MapData<Descriptors>& source, const MapData<Descriptors>& dest) {
+  return MapEdges{source.edge_points, source.walls, dest.walls, source.lookup, dest.lookup};
+}
+
+}  // namespace areamatch::detail

@@ -1,0 +1,269 @@
+#pragma once
+/// \file match/selection.hpp
+/// Choosing the answer among the clusters: the Selection policy, `Matcher`'s fifth template
+/// parameter.
+///
+/// A selection policy reads the clusters (best first, from the Clusterer) with everything the
+/// matcher built for the pair, and returns its finalists, best first: the first is the answer,
+/// the others are the rivals its margins are measured against (`MatchResult::confidence`). It
+/// must be deterministic, and with `MatcherParams::threads` ≥ 2 it may spread its work with
+/// `detail::for_each_index` as long as the result does not depend on the thread count. The
+/// smallest conforming type:
+/// \code
+/// struct FirstClusterSelection {   // trust the best cluster's best member
+///   areamatch::Selected select(const areamatch::SelectionInputs& in, areamatch::MatchStatistics&) const {
+///     areamatch::Selected out;
+///     if (in.clusters.empty()) return out;
+///     const int best = in.clusters.front().members.front();
+///     out.finalists.push_back({in.hypotheses[static_cast<std::size_t>(best)].T_dest_source, 0.0});
+///     return out;
+///   }
+/// };
+/// \endcode
+///
+/// Two ship: `WholeMapSelection` (default) verifies the best members of every cluster on the
+/// whole map and refines the best few by ICP; `LargestClusterSelection` is the paper's, the
+/// largest cluster's member with the highest Σ OP.
+
+#include "../area_graph.hpp"
+#include "../detail/parallel.hpp"
+#include "../transform.hpp"
+#include "clusterer.hpp"
+#include "costs.hpp"
+#include "evidence.hpp"
+#include "hypotheses.hpp"
+#include "params.hpp"
+#include "raster.hpp"
+#include "refine.hpp"
+#include "result.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <type_traits>
+#include <utility>
+#include <vector>
+
+namespace areamatch {
+
+/// A transform with a selection's score for it.
+struct ScoredTransform {
+  Similarity2 T;
+  double score = 0.0;
+};
+
+/// What a selection may read: the matcher's parameters and what it built for the pair.
+struct SelectionInputs {
+  const MatcherParams& params;
+  const HypothesisInputs& maps;               ///< both Area Graphs, coarse rasters, wall directions
+  const std::vector<AreaPair>& pairs;         ///< the mutual nearest area pairs
+  const std::vector<Hypothesis>& hypotheses;
+  const std::vector<Cluster>& clusters;       ///< best first, each best member first
+  const AreaRaster& source_fine;              ///< area-covered free space on fine cells
+  const AreaRaster& dest_fine;
+  const detail::MapEdges& edges;              ///< both maps' free-space edges and lookups
+};
+
+/// What a selection returns.
+struct Selected {
+  /// Best first; the first is the answer, the others its rivals for the margins. Empty: no answer.
+  std::vector<ScoredTransform> finalists;
+  /// The finalists' scores rank transforms of different clusters on one scale in [0, 1]: the
+  /// margins are their differences and `MatcherParams::min_score` applies to the answer's. Else
+  /// the matcher measures the margins by free-space IoU and `min_score` does not apply.
+  bool comparable_scores = false;
+  /// The finalists were refined by ICP (`MatcherParams::refinement`): the answer's quarter turns
+  /// are then refined the same way and measured (`MatchEvidence::turn_margin`).
+  bool refined = false;
+};
+
+namespace detail {
+
+template <class S, class = void>
+struct is_selection : std::false_type {};
+template <class S>
+struct is_selection<S, std::void_t<decltype(std::declval<const S&>().select(std::declval<const SelectionInputs&>(),
+                                                                             std::declval<MatchStatistics&>()))>>
+    : std::is_convertible<decltype(std::declval<const S&>().select(std::declval<const SelectionInputs&>(),
+                                                                   std::declval<MatchStatistics&>())),
+                          Selected> {};
+
+/// Every k-th of `points`, k = max(1, size / about): about `about` of them (at most 2·about − 1),
+/// evenly spread, in order.
+inline std::vector<Eigen::Vector2d> evenly_thinned(const std::vector<Eigen::Vector2d>& points, std::size_t about) {
+  const std::size_t stride = std::max<std::size_t>(1, points.size() / about);
+  std::vector<Eigen::Vector2d> out;
+  out.reserve(points.size() / stride + 1);
+  for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
+  return out;
+}
+
+/// The mean of a raster's labelled cell centres (the origin when it has none).
+inline Eigen::Vector2d centroid_of(const AreaRaster& raster) {
+  Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
+  for (const auto& c : raster.centres) centroid += c;
+  return raster.centres.empty() ? centroid : Eigen::Vector2d(centroid / static_cast<double>(raster.centres.size()));
+}
+
+/// Whether two transforms are clearly different answers: another side of the mirror, a
+/// rotation apart, or the source's free-space centroid lands apart.
+inline bool different(const Similarity2& a, const Similarity2& b, const Eigen::Vector2d& source_centroid,
+                      const MatcherParams& params) {
+  if (a.reflected != b.reflected) return true;
+  if (std::abs(wrap_angle(a.rotation - b.rotation)) > params.different_rotation_rad) return true;
+  return ((a * source_centroid) - (b * source_centroid)).norm() > params.different_translation_m;
+}
+
+/// The sides of the mirror tried: unmirrored, and mirrored with `allow_reflection`.
+inline std::vector<bool> mirror_sides(const MatcherParams& params) {
+  return params.allow_reflection ? std::vector<bool>{false, true} : std::vector<bool>{false};
+}
+
+}  // namespace detail
+
+/// template<class S> constexpr bool: S is a selection policy (`select(const SelectionInputs&,
+/// MatchStatistics&) const` returning `Selected`).
+template <class S>
+inline constexpr bool is_selection_v = detail::is_selection<S>::value;
+
+/// Ours: the best members of every cluster, ranked by how much of the source's walls land near
+/// the destination's (sparse, then all wall points); the best few refined by ICP and scored.
+/// The answer is the best of those, whatever cluster it came from. Its budgets and distances are
+/// `MatcherParams`' whole-map verification parameters.
+struct WholeMapSelection {
+  Selected select(const SelectionInputs& in, MatchStatistics& statistics) const {
+    const MatcherParams& params = in.params;
+    std::vector<ScoredTransform> candidates;
+    for (const Cluster& cluster : in.clusters) {
+      for (std::size_t m = 0; m < std::min(params.members_per_cluster, cluster.members.size()); ++m) {
+        candidates.push_back({in.hypotheses[static_cast<std::size_t>(cluster.members[m])].T_dest_source, 0.0});
+      }
+    }
+    auto by_score = [](const ScoredTransform& a, const ScoredTransform& b) { return a.score > b.score; };
+    // Unrefined candidates are ranked by the share of the source's walls near the destination's
+    // edge (frontiers left out: a partial map's frontier is not a wall of the other map), first
+    // on a few hundred wall points, then on all of them.
+    const detail::MapEdges& edges = in.edges;
+    const std::vector<Eigen::Vector2d>& walls = edges.source_walls.empty() ? edges.source_points : edges.source_walls;
+    const std::vector<Eigen::Vector2d> sparse_walls = detail::evenly_thinned(walls, params.sparse_samples);
+    auto score_on = [&](const std::vector<Eigen::Vector2d>& points) {
+      detail::for_each_index(candidates.size(), params.threads, [&](std::size_t i) {
+        candidates[i].score = boundary_inlier_fraction(points, edges.dest_lookup, candidates[i].T, params.candidate_wall_distance_m);
+      });
+    };
+    score_on(sparse_walls);
+    std::stable_sort(candidates.begin(), candidates.end(), by_score);
+    if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
+    score_on(walls);
+    statistics.verified = candidates.size();
+    std::stable_sort(candidates.begin(), candidates.end(), by_score);
+
+    // Finalists: the best few, plus the best on the other side of the mirror and the best clearly
+    // different transform, so that the confidence margins compare refined with refined.
+    Selected out;
+    out.comparable_scores = true;
+    out.refined = params.refine;
+    std::vector<ScoredTransform>& finalists = out.finalists;
+    const Eigen::Vector2d centroid = detail::centroid_of(*in.maps.source_raster);
+    auto add_finalist = [&](const ScoredTransform& c) {
+      for (const auto& f : finalists) {
+        if (!detail::different(f.T, c.T, centroid, params)) return;
+      }
+      finalists.push_back(c);
+    };
+    for (const auto& c : candidates) {
+      if (finalists.size() >= params.refine_candidates) break;
+      add_finalist(c);
+    }
+    for (const auto& c : candidates) {
+      if (c.T.reflected != candidates.front().T.reflected) { add_finalist(c); break; }
+    }
+
+    refine_and_score(in, finalists, statistics);
+    std::stable_sort(finalists.begin(), finalists.end(), by_score);
+    return out;
+  }
+
+ private:
+  /// Refines the finalists by ICP and scores them: a blend of the fine free-space IoU and the
+  /// share of the source's free-space edge that lies on the destination's.
+  static void refine_and_score(const SelectionInputs& in, std::vector<ScoredTransform>& finalists,
+                               MatchStatistics& statistics) {
+    const MatcherParams& params = in.params;
+    const std::vector<Eigen::Vector2d>& edge = in.edges.source_points;
+    const BoundaryLookup& dest_edge = in.edges.dest_lookup;
+    if (params.refine) {
+      RefineParams refinement = params.refinement;
+      refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
+      const std::vector<Eigen::Vector2d>* points = &edge;
+      const BoundaryLookup* lookup = &dest_edge;
+      std::vector<Eigen::Vector2d> area_points;
+      BoundaryLookup area_lookup;
+      if (!params.refine_on_free_edges) {
+        area_points = detail::area_boundary_points(*in.maps.source, params.refinement.point_spacing_m,
+                                                   static_cast<std::size_t>(params.refinement.max_points));
+        area_lookup = BoundaryLookup(detail::area_boundary_points(*in.maps.dest, 0.5 * params.refinement.lookup_cell_m),
+                                     params.refinement.lookup_cell_m, params.refinement.gates_m.front(),
+                                     params.refinement.point_to_line ? params.refinement.normal_radius_m : 0.0);
+        points = &area_points;
+        lookup = &area_lookup;
+      }
+      detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
+        finalists[i].T = refine_icp(*points, *lookup, finalists[i].T, refinement);
+      });
+      statistics.refined = finalists.size();
+    }
+    detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
+      auto& f = finalists[i];
+      const double iou = free_space_iou(in.source_fine, in.dest_fine, f.T);
+      const double walls = boundary_inlier_fraction(edge, dest_edge, f.T, params.wall_inlier_distance_m);
+      f.score = (1.0 - params.wall_score_weight) * iou + params.wall_score_weight * walls;
+    });
+  }
+};
+
+/// The paper: on each side of the mirror, the largest cluster's member with the highest Σ OP
+/// over all mutual pairs; the sides compare by that Σ OP. The first member of every other cluster
+/// follows as a rival for the margins (Σ OP does not compare transforms of different clusters:
+/// the matcher scores the rivals by IoU).
+struct LargestClusterSelection {
+  Selected select(const SelectionInputs& in, MatchStatistics& statistics) const {
+    const MatcherParams& params = in.params;
+    auto total_overlap = [&](const Similarity2& T) {
+      double sum = 0.0;
+      for (const AreaPair& pair : in.pairs) {
+        sum += pair_overlap(in.maps, pair, params.hypotheses.exact_overlap, T, &statistics.overlay_failures);
+      }
+      return sum;
+    };
+    Selected out;
+    std::vector<ScoredTransform> others;  // first members of the other clusters
+    for (bool side : detail::mirror_sides(params)) {
+      bool first = true;
+      for (const Cluster& cluster : in.clusters) {
+        if (in.hypotheses[static_cast<std::size_t>(cluster.members.front())].T_dest_source.reflected != side) continue;
+        if (first) {
+          first = false;
+          ScoredTransform best{{}, -1.0};
+          for (int m : cluster.members) {
+            const Similarity2& T = in.hypotheses[static_cast<std::size_t>(m)].T_dest_source;
+            const double s = total_overlap(T);
+            ++statistics.verified;
+            if (s > best.score) best = {T, s};
+          }
+          out.finalists.push_back(best);
+        } else {
+          others.push_back({in.hypotheses[static_cast<std::size_t>(cluster.members.front())].T_dest_source, -1.0});
+        }
+      }
+    }
+    std::stable_sort(out.finalists.begin(), out.finalists.end(),
+                     [](const auto& a, const auto& b) { return a.score > b.score; });
+    out.finalists.insert(out.finalists.end(), others.begin(), others.end());
+    return out;
+  }
+};
+
+}  // namespace areamatch
