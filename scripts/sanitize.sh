@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
-# Builds the tests and the program with AddressSanitizer + UndefinedBehaviorSanitizer (Debug,
-# -O1, frame pointers kept, every UB report fatal) into build-sanitize/ and runs the test suite
+# Builds the tests and the program with clang's AddressSanitizer + UndefinedBehaviorSanitizer
+# (Debug, -O1, frame pointers kept, every UB report fatal) into build-sanitize/ and runs the test suite
 # there, including the replay of the fuzz corpus. Any sanitizer report fails the run. The
 # packaging, benchmark and compile-fail tests and the examples are left to scripts/test.sh: they
 # test the install, speed, the compiler's messages and the README, not memory safety.

@@ -444,13 +444,15 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
   CHECK(unknown.out.find("unknown.yaml not placed") != std::string::npos);
   CHECK(unknown.out.find("no areas") != std::string::npos);
 
-  for (const auto& [arguments, message] : std::vector<std::pair<std::string, std::string>>{
+  for (const auto& bad_input : std::vector<std::pair<std::string, std::string>>{
            {dir + "/a/layout.yaml", "at least two maps"},
            {maps + " " + dir + "/a/../a/robot.yaml", "is given twice"},
            {maps + " --reference " + dir + "/b/robot.yaml", "not one of the maps"},
            {maps + " --wall-share 2", "--wall-share must be in (0, 1]"},
            {maps + " --out " + dir + "/merged.pgm", "must name a .yaml file"},
            {maps + " " + dir + "/missing.yaml", "missing.yaml"}}) {
+    const std::string& arguments = bad_input.first;  // not a structured binding: the checks' lambdas capture it
+    const std::string& message = bad_input.second;
     const Run bad = run("merge " + arguments);
     CHECK_MESSAGE(bad.status == 2, arguments);
     CHECK_MESSAGE(bad.out.find(message) != std::string::npos, bad.out);

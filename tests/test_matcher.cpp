@@ -311,6 +311,24 @@ TEST_CASE("room correspondences on bent robot maps: right rooms, local transform
     const AreaGraph dest = matcher.segmenter.segment(building.layout);
     const MatchResult r = matcher.match(robot.grid, source, building.layout, dest);
     REQUIRE_MESSAGE(r.ok, r.reason);
+    // The public overload, from the grid and the rasters and lookup a matcher builds, gives the
+    // matcher's own correspondences.
+    const auto source_data = detail::build_map_data(robot.grid, source, matcher.features, matcher.params, false);
+    const auto dest_data = detail::build_map_data(building.layout, dest, matcher.features, matcher.params, true);
+    const std::vector<MatchedAreaPair> again =
+        area_correspondences(robot.grid, source, dest, source_data.fine(), dest_data.fine(), dest_data.lookup,
+                             r.T_dest_source, matcher.params.correspondences);
+    REQUIRE(again.size() == r.matched_areas.size());
+    for (std::size_t k = 0; k < again.size(); ++k) {
+      const MatchedAreaPair &a = again[k], &b = r.matched_areas[k];
+      CHECK(a.source == b.source);
+      CHECK(a.dest == b.dest);
+      CHECK(a.overlap == b.overlap);
+      CHECK(a.iou == b.iou);
+      CHECK(a.T_dest_source.translation == b.T_dest_source.translation);
+      CHECK(a.T_dest_source.rotation == b.T_dest_source.rotation);
+      CHECK((a.wall_agreement == b.wall_agreement || (std::isnan(a.wall_agreement) && std::isnan(b.wall_agreement))));
+    }
     auto truth_room = [&](const Eigen::Vector2d& world) {
       const Eigen::Vector2d px = building.layout.pixel_from_world() * world;
       const int col = static_cast<int>(std::lround(px.x())), row = static_cast<int>(std::lround(px.y()));
@@ -492,7 +510,8 @@ TEST_CASE("pose clustering: its binned leader search gives exactly a linear scan
       hypotheses.push_back(h);
     }
   }
-  for (const auto& [rotation, translation] : {std::pair{3.0 * pi / 180.0, 1.0}, std::pair{0.05, 0.3}, std::pair{2.5, 4.0}}) {
+  for (const auto& tolerances : {std::pair{3.0 * pi / 180.0, 1.0}, std::pair{0.05, 0.3}, std::pair{2.5, 4.0}}) {
+    const double rotation = tolerances.first, translation = tolerances.second;  // (lambdas below capture them)
     PoseClusterer clusterer;
     clusterer.params.rotation_rad = rotation;
     clusterer.params.translation_m = translation;
@@ -730,8 +749,13 @@ TEST_CASE("every clusterer with every selection, through the same synthetic case
                       << ", pose + largest cluster " << pose_largest << ", angular + largest cluster " << angular_largest
                       << ", pose + first cluster (ours) " << pose_first);
   CHECK(pose_whole == static_cast<int>(cases));
-  CHECK(angular_whole >= 1);
   CHECK(pose_largest >= 1);
-  CHECK(angular_largest >= 1);
   CHECK(pose_first >= 1);
+  // The angular compositions are right on about half the cases, and which half depends on the
+  // compiler (clang 14 -O1: 3 and 4 of 8 against GCC's 4 and 5): on the quick mode's three cases
+  // none may be right, so their counts are checked on the full eight only.
+  if (!areamatch_test::quick_tests()) {
+    CHECK(angular_whole >= 1);
+    CHECK(angular_largest >= 1);
+  }
 }

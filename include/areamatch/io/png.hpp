@@ -143,9 +143,12 @@ inline std::vector<unsigned char> encode_png_raw(int width, int height, int colo
   for (int r = 0; r < height; ++r) {
     const unsigned char* row = samples + static_cast<std::size_t>(r) * row_bytes;
     filtered.push_back(r == 0 ? 0 : 2);
-    for (std::size_t i = 0; i < row_bytes; ++i) {
-      filtered.push_back(r == 0 ? row[i] : static_cast<unsigned char>(row[i] - row[i - row_bytes]));
+    if (r == 0) {
+      filtered.insert(filtered.end(), row, row + row_bytes);
+      continue;
     }
+    const unsigned char* above = row - row_bytes;
+    for (std::size_t i = 0; i < row_bytes; ++i) filtered.push_back(static_cast<unsigned char>(row[i] - above[i]));
   }
   int compressed_size = 0;
   std::unique_ptr<unsigned char, void (*)(void*)> compressed(
