@@ -54,6 +54,14 @@ if [ "$mode" = sanitize ]; then
   # units (examples/quickstart.cpp: 80 s against 121 s with these flags); the Release build
   # stays GCC's, so CI compiles the library with both.
   flags="-O1 -g1 -fno-omit-frame-pointer -fsanitize=address,undefined -fno-sanitize-recover=all"
+  # A build folder configured with another compiler (GCC, before 2026-12-02): CMake would wipe its
+  # cache on the compiler change and drop every option below with it, leaving a Release build
+  # without sanitizers. Configure it afresh instead.
+  cache="$build_dir/CMakeCache.txt"
+  if [ -f "$cache" ] && ! grep -q '^CMAKE_CXX_COMPILER:.*clang++$' "$cache"; then
+    echo "setup: $build_dir was configured with another compiler; configuring it afresh with clang++"
+    rm -rf "$cache" "$build_dir/CMakeFiles"
+  fi
   cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DAREAMATCH_BUILD_BENCHMARKS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF \
         -DAREAMATCH_SHARED_TESTS=OFF -DAREAMATCH_BUILD_PYTHON=OFF ${AREAMATCH_CMAKE_ARGS:-}
