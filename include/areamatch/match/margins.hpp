@@ -81,8 +81,7 @@ inline void measure_turn_margin(const AreaRaster& source_fine, const AreaRaster&
     const Eigen::Matrix2d mirror = turn(wall_direction) * flip * turn(-wall_direction);
     for (int k = 0; k < 4; ++k) alternatives.push_back(about_centre(turn(k * 0.5 * pi) * mirror) * T);
   }
-  RefineParams refinement = params.refinement;
-  refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
+  const RefineParams refinement = finalist_refinement(params);
   // A rival needs only to be placed well enough to be scored: its ICP runs on fewer points.
   const std::vector<Eigen::Vector2d> points = evenly_thinned(edges.source_points, params.turn_check_points);
   std::vector<double> walls(alternatives.size());

@@ -116,6 +116,15 @@ inline bool different(const Similarity2& a, const Similarity2& b, const Eigen::V
   return ((a * source_centroid) - (b * source_centroid)).norm() > params.different_translation_m;
 }
 
+/// The ICP that refines the finalists, and the answer's rivals in the turn margin (so that they
+/// are placed as the answer was): `params.refinement`, fitting the scale too when the matcher
+/// estimates it.
+inline RefineParams finalist_refinement(const MatcherParams& params) {
+  RefineParams refinement = params.refinement;
+  refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
+  return refinement;
+}
+
 /// The sides of the mirror tried: unmirrored, and mirrored with `allow_reflection`.
 inline std::vector<bool> mirror_sides(const MatcherParams& params) {
   return params.allow_reflection ? std::vector<bool>{false, true} : std::vector<bool>{false};
@@ -195,8 +204,7 @@ struct WholeMapSelection {
     const std::vector<Eigen::Vector2d>& edge = in.edges.source_points;
     const BoundaryLookup& dest_edge = in.edges.dest_lookup;
     if (params.refine) {
-      RefineParams refinement = params.refinement;
-      refinement.estimate_scale = refinement.estimate_scale || params.estimate_scale;
+      const RefineParams refinement = detail::finalist_refinement(params);
       const std::vector<Eigen::Vector2d>* points = &edge;
       const BoundaryLookup* lookup = &dest_edge;
       std::vector<Eigen::Vector2d> area_points;
