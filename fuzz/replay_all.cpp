@@ -1,20 +1,8 @@
 // The fuzz targets without libFuzzer, as one program: `replay_fuzz TARGET INPUT...` runs the
 // target's entry point on every file in the folders (or files) given. The test suite uses it to
 // replay the seed corpus and every past finding (fuzz/regressions/) with the ordinary compiler,
-// and under the sanitizers in scripts/sanitize.sh. The four targets are compiled in this one unit,
-// each entry point renamed, since each alone costs a compile of the whole library.
-#define LLVMFuzzerTestOneInput replay_fuzz_image
-#include "fuzz_image.cpp"
-#undef LLVMFuzzerTestOneInput
-#define LLVMFuzzerTestOneInput replay_fuzz_yaml
-#include "fuzz_yaml.cpp"
-#undef LLVMFuzzerTestOneInput
-#define LLVMFuzzerTestOneInput replay_fuzz_segment
-#include "fuzz_segment.cpp"
-#undef LLVMFuzzerTestOneInput
-#define LLVMFuzzerTestOneInput replay_fuzz_match
-#include "fuzz_match.cpp"
-#undef LLVMFuzzerTestOneInput
+// and under the sanitizers in scripts/sanitize.sh. The four targets are one unit (fuzz_targets.hpp).
+#include "fuzz_targets.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -27,19 +15,9 @@
 #include <vector>
 
 int main(int argc, char** argv) {
-  using Target = int (*)(const std::uint8_t*, std::size_t);
-  const struct {
-    const char* name;
-    Target run;
-  } targets[] = {{"fuzz_image", replay_fuzz_image},
-                 {"fuzz_yaml", replay_fuzz_yaml},
-                 {"fuzz_segment", replay_fuzz_segment},
-                 {"fuzz_match", replay_fuzz_match}};
-  Target run = nullptr;
-  for (const auto& t : targets)
-    if (argc > 1 && std::strcmp(argv[1], t.name) == 0) run = t.run;
+  const areamatch_fuzz::Target run = argc > 1 ? areamatch_fuzz::find_target(argv[1]) : nullptr;
   if (!run) {
-    std::fprintf(stderr, "usage: replay_fuzz fuzz_image|fuzz_yaml|fuzz_segment|fuzz_match INPUT...\n");
+    std::fprintf(stderr, "usage: replay_fuzz %s INPUT...\n", areamatch_fuzz::target_names);
     return 2;
   }
   std::vector<std::filesystem::path> files;

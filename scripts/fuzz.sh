@@ -1,10 +1,11 @@
 #!/usr/bin/env bash
-# Builds the libFuzzer targets with clang (ASan + UBSan) into build-fuzz/ and fuzzes each for
-# SECONDS (default 60), starting from fuzz/corpus/<target> (new inputs go to
-# build-fuzz/corpus/<target>, findings to build-fuzz/findings/<target>/). Fails when a target
-# finds a crash, a sanitizer report, a leak, an input slower than 10 s or one using more than
-# 2 GB. Turn every finding into a regression test: copy it into fuzz/regressions/<target>/,
-# where the test suite replays it (ctest -L fuzz).
+# Builds the libFuzzer targets with clang (ASan + UBSan) in the sanitizer build (build-sanitize/,
+# the folder scripts/sanitize.sh tests in: same compiler and flags, so one build serves both) and
+# fuzzes each for SECONDS (default 60), starting from fuzz/corpus/<target> (new inputs go to
+# build-sanitize/fuzz-corpus/<target>, findings to build-sanitize/fuzz-findings/<target>/). Fails
+# when a target finds a crash, a sanitizer report, a leak, an input slower than 10 s or one using
+# more than 2 GB. Turn every finding into a regression test: copy it into
+# fuzz/regressions/<target>/, where the test suite replays it (ctest -L fuzz).
 # The random seed is fixed (AREAMATCH_FUZZ_SEED, default 1); set it to 0 for a fresh seed each
 # run when fuzzing for long. The targets run AREAMATCH_FUZZ_JOBS at a time (default: one per core).
 #   scripts/fuzz.sh [SECONDS] [TARGET...]      targets: fuzz_image fuzz_yaml fuzz_segment fuzz_match
@@ -15,41 +16,26 @@ shift || true
 targets=("$@")
 [ ${#targets[@]} -gt 0 ] || targets=(fuzz_image fuzz_yaml fuzz_segment fuzz_match)
 
-missing=()
-for p in clang libclang-rt-14-dev; do
-  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
-done
-if [ ${#missing[@]} -gt 0 ]; then
-  sudo=""; [ "$(id -u)" -ne 0 ] && sudo="sudo"
-  $sudo apt-get update -qq
-  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
-fi
-scripts/setup.sh --deps-only
-
-build=build-fuzz
-cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DAREAMATCH_BUILD_FUZZERS=ON \
-      -DAREAMATCH_BUILD_TESTS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF -DAREAMATCH_BUILD_BENCHMARKS=OFF \
-      -DAREAMATCH_BUILD_TOOLS=OFF -DAREAMATCH_INSTALL=OFF -DAREAMATCH_BUILD_PYTHON=OFF > /dev/null
-cmake --build "$build" -j "$(nproc)" --target "${targets[@]}"
-
+build="${AREAMATCH_SANITIZE_BUILD_DIR:-build-sanitize}"
+AREAMATCH_BUILD_DIR="$build" scripts/setup.sh --sanitize --target areamatch_fuzz
 export UBSAN_OPTIONS="halt_on_error=1:print_stacktrace=1"
 # The targets run side by side, one per core (each still fuzzes for SECONDS); their reports
 # follow in target order.
 fuzz_one() {
   local t="$1"
-  mkdir -p "$build/corpus/$t" "$build/findings/$t"
-  if "$build/fuzz/$t" "$build/corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -seed="${AREAMATCH_FUZZ_SEED:-1}" -timeout=10 \
-       -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$build/findings/$t/" -print_final_stats=1 \
-       2> "$build/$t.log"; then
-    echo 0 > "$build/$t.status"
+  mkdir -p "$build/fuzz-corpus/$t" "$build/fuzz-findings/$t"
+  if "$build/fuzz/$t" "$build/fuzz-corpus/$t" "fuzz/corpus/$t" -max_total_time="$seconds" -seed="${AREAMATCH_FUZZ_SEED:-1}" -timeout=10 \
+       -rss_limit_mb=2048 -max_len=8192 -artifact_prefix="$build/fuzz-findings/$t/" -print_final_stats=1 \
+       2> "$build/fuzz-$t.log"; then
+    echo 0 > "$build/fuzz-$t.status"
   else
-    echo 1 > "$build/$t.status"
+    echo 1 > "$build/fuzz-$t.status"
   fi
 }
 jobs="${AREAMATCH_FUZZ_JOBS:-$(nproc)}"
 running=0
 for t in "${targets[@]}"; do
-  rm -f "$build/$t.status"
+  rm -f "$build/fuzz-$t.status"
   echo "== $t: ${seconds} s"
   fuzz_one "$t" &
   running=$((running + 1))
@@ -61,12 +47,12 @@ done
 wait || true
 status=0
 for t in "${targets[@]}"; do
-  if [ "$(cat "$build/$t.status" 2>/dev/null)" != 0 ]; then
+  if [ "$(cat "$build/fuzz-$t.status" 2>/dev/null)" != 0 ]; then
     status=1
-    echo "$t: FINDING (see $build/$t.log and $build/findings/$t/)"
-    grep -E "ERROR|SUMMARY|Test unit written" "$build/$t.log" | head -5 || true
+    echo "$t: FINDING (see $build/fuzz-$t.log and $build/fuzz-findings/$t/)"
+    grep -E "ERROR|SUMMARY|Test unit written" "$build/fuzz-$t.log" | head -5 || true
   else
-    echo "$t: $(grep -E "stat::number_of_executed_units|cov:" "$build/$t.log" | tail -2 | tr '\n' ' ')"
+    echo "$t: $(grep -E "stat::number_of_executed_units|cov:" "$build/fuzz-$t.log" | tail -2 | tr '\n' ' ')"
   fi
 done
 exit $status
