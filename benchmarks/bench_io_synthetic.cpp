@@ -1,5 +1,5 @@
 // Speed of the foundation: generating synthetic buildings and robot maps of growing size, and
-// loading real maps. Run: build/benchmarks/bench_io_synthetic --benchmark_out=io.json
+// loading real maps. Run: build/benchmarks/areamatch_bench --benchmark_filter=^BM_ --benchmark_out=io.json
 #include <areamatch/areamatch.hpp>
 #include <areamatch/io.hpp>
 
@@ -7,7 +7,7 @@
 
 #include <sys/stat.h>
 
-namespace {
+namespace areamatch_bench::io_synthetic {
 
 areamatch::BuildingParams square(double side) {
   areamatch::BuildingParams p;
@@ -51,6 +51,4 @@ void BM_LoadSharedMap(benchmark::State& state) {
 }
 BENCHMARK(BM_LoadSharedMap)->Unit(benchmark::kMillisecond);
 
-}  // namespace
-
-BENCHMARK_MAIN();
+}  // namespace areamatch_bench::io_synthetic

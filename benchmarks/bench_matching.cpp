@@ -9,38 +9,26 @@
 //                  (Matcher::prepare): segment the source and match, as when localising robot
 //                  maps against a floor plan
 // Pairs are prepared on first use, so a --benchmark_filter run pays only for what it selects.
-//   build/benchmarks/bench_matching --benchmark_out=matching.json --benchmark_out_format=json
+//   build/benchmarks/areamatch_bench --benchmark_filter='^(match|pair|onto_prepared)/' --benchmark_out=matching.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
 #include <areamatch/io.hpp>
 #include <eval/evaluate.hpp>
 
 #include <benchmark/benchmark.h>
 
+#include "bench_support.hpp"
+
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 
-namespace {
+namespace areamatch_bench::matching {
 
 struct Prepared {
   areamatch::OccupancyGrid source, dest;
   areamatch::AreaGraph source_graph, dest_graph;
   areamatch::MapPairOptions options;
-};
-
-/// Builds its pair the first time it is asked for it.
-class LazyPair {
- public:
-  explicit LazyPair(std::function<Prepared()> make) : make_(std::move(make)) {}
-  const Prepared& get() {
-    if (!prepared_) prepared_ = make_();
-    return *prepared_;
-  }
-
- private:
-  std::function<Prepared()> make_;
-  std::optional<Prepared> prepared_;
 };
 
 areamatch::Matcher<> matcher_for(const areamatch::MapPairOptions& options) {
@@ -85,7 +73,7 @@ void whole_pair_in_memory(benchmark::State& state, const Prepared& p) {
 
 void register_pair(const std::string& name, std::function<Prepared()> make,
                    std::function<void(benchmark::State&, const Prepared&)> whole_pair) {
-  auto lazy = std::make_shared<LazyPair>(std::move(make));
+  auto lazy = areamatch_bench::lazy<Prepared>(std::move(make));
   benchmark::RegisterBenchmark(("match/" + name).c_str(), [lazy](benchmark::State& state) { match_stage(state, lazy->get()); })
       ->Unit(benchmark::kMillisecond);
   benchmark::RegisterBenchmark(("pair/" + name).c_str(), [lazy, whole_pair](benchmark::State& state) {
@@ -146,14 +134,9 @@ void register_shared_pairs() {
   }
 }
 
-}  // namespace
+}  // namespace areamatch_bench::matching
 
-int main(int argc, char** argv) {
-  register_synthetic();
-  register_shared_pairs();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+void areamatch_bench::register_matching() {
+  matching::register_synthetic();
+  matching::register_shared_pairs();
 }

@@ -8,7 +8,7 @@
 //                        present), the layout as reference, door width 1.0 m
 // Counters: matching_ms, fit_ms, fuse_ms (per merge) and prepare_ms (all N preparations, once:
 // merging N maps needs N of them, done before the timed loop).
-//   build/benchmarks/bench_merge --benchmark_out=merge.json --benchmark_out_format=json
+//   build/benchmarks/areamatch_bench --benchmark_filter='^merge/' --benchmark_out=merge.json --benchmark_out_format=json
 #include "synthetic_cases.hpp"
 
 #include <areamatch/areamatch.hpp>
@@ -17,13 +17,15 @@
 
 #include <benchmark/benchmark.h>
 
+#include "bench_support.hpp"
+
 #include <chrono>
 #include <cstdlib>
 #include <string>
 #include <sys/stat.h>
 #include <vector>
 
-namespace {
+namespace areamatch_bench::merging {
 
 using Prepared = areamatch::Matcher<>::PreparedMap;
 
@@ -62,9 +64,10 @@ std::string shared_dir() {
   return ::stat((dir + "/handheld/pairs.json").c_str(), &info) == 0 ? dir : "";
 }
 
-}  // namespace
+}  // namespace areamatch_bench::merging
 
-int main(int argc, char** argv) {
+void areamatch_bench::register_merge() {
+  using namespace merging;
   for (const auto& [n, threads] : {std::pair<std::size_t, unsigned>{2, 1}, {5, 1}, {10, 1}, {15, 1}, {15, 2}}) {
     const std::string name = "merge/synthetic/" + std::to_string(n) + (threads > 1 ? "/threads:" + std::to_string(threads) : "");
     benchmark::RegisterBenchmark(name.c_str(), [n = n, threads = threads](benchmark::State& state) {
@@ -87,9 +90,4 @@ int main(int argc, char** argv) {
       run_merge(state, matcher, grids);
     })->Unit(benchmark::kMillisecond)->UseRealTime();
   }
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
 }

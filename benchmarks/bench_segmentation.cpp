@@ -3,12 +3,15 @@
 // shared maps also the Voronoi builder alone on the traced boundary, ours (`voronoi/`, with the
 // corner circle events of detail/voronoi_circles.hpp) and Boost.Polygon's `construct_voronoi`
 // (`voronoi_boost/`).
-//   build/benchmarks/bench_segmentation --benchmark_out=segmentation.json --benchmark_out_format=json
+// Inputs are built on first use (a filtered run loads only what it selects).
+//   build/benchmarks/areamatch_bench --benchmark_filter='^(segment|voronoi|voronoi_boost)/' --benchmark_out=segmentation.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
 #include <areamatch/detail/voronoi_circles.hpp>
 #include <areamatch/io.hpp>
 
 #include <benchmark/benchmark.h>
+
+#include "bench_support.hpp"
 
 #include <dirent.h>
 
@@ -17,7 +20,7 @@
 #include <string>
 #include <vector>
 
-namespace {
+namespace areamatch_bench::segmentation {
 
 void segment_map(benchmark::State& state, const areamatch::OccupancyGrid& grid) {
   const areamatch::VoronoiSegmenter segmenter;
@@ -55,9 +58,9 @@ void register_synthetic() {
     areamatch::BuildingParams params;
     params.width_m = side;
     params.height_m = side;
-    auto grid = std::make_shared<areamatch::OccupancyGrid>(areamatch::generate_building(params, 1).layout);
+    auto grid = lazy<areamatch::OccupancyGrid>([params] { return areamatch::generate_building(params, 1).layout; });
     benchmark::RegisterBenchmark(("segment/synthetic_" + std::to_string(side) + "m").c_str(),
-                                 [grid](benchmark::State& state) { segment_map(state, *grid); })
+                                 [grid](benchmark::State& state) { segment_map(state, grid->get()); })
         ->Unit(benchmark::kMillisecond);
   }
 }
@@ -74,30 +77,25 @@ void register_shared_maps() {
   ::closedir(dir);
   std::sort(names.begin(), names.end());
   for (const auto& name : names) {
-    auto grid = std::make_shared<areamatch::OccupancyGrid>(areamatch::load_map(folder + "/" + name));
+    auto grid = lazy<areamatch::OccupancyGrid>([path = folder + "/" + name] { return areamatch::load_map(path); });
     const std::string map = name.substr(0, name.size() - 5);
-    benchmark::RegisterBenchmark(("segment/" + map).c_str(), [grid](benchmark::State& state) { segment_map(state, *grid); })
+    benchmark::RegisterBenchmark(("segment/" + map).c_str(), [grid](benchmark::State& state) { segment_map(state, grid->get()); })
         ->Unit(benchmark::kMillisecond);
-    auto input = std::make_shared<areamatch::BoundarySegments>(voronoi_input(*grid));
+    auto input = lazy<areamatch::BoundarySegments>([grid] { return voronoi_input(grid->get()); });
     using Segments = std::vector<areamatch::LatticeSegment>;
     using Diagram = boost::polygon::voronoi_diagram<double>;
     benchmark::RegisterBenchmark(("voronoi/" + map).c_str(), [input](benchmark::State& state) {
-      build_voronoi(state, *input, [](const Segments& s, Diagram* d) { areamatch::detail::construct_segment_voronoi(s.begin(), s.end(), d); });
+      build_voronoi(state, input->get(), [](const Segments& s, Diagram* d) { areamatch::detail::construct_segment_voronoi(s.begin(), s.end(), d); });
     })->Unit(benchmark::kMillisecond);
     benchmark::RegisterBenchmark(("voronoi_boost/" + map).c_str(), [input](benchmark::State& state) {
-      build_voronoi(state, *input, [](const Segments& s, Diagram* d) { boost::polygon::construct_voronoi(s.begin(), s.end(), d); });
+      build_voronoi(state, input->get(), [](const Segments& s, Diagram* d) { boost::polygon::construct_voronoi(s.begin(), s.end(), d); });
     })->Unit(benchmark::kMillisecond);
   }
 }
 
-}  // namespace
+}  // namespace areamatch_bench::segmentation
 
-int main(int argc, char** argv) {
-  register_synthetic();
-  register_shared_maps();
-  benchmark::Initialize(&argc, argv);
-  if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
-  benchmark::RunSpecifiedBenchmarks();
-  benchmark::Shutdown();
-  return 0;
+void areamatch_bench::register_segmentation() {
+  segmentation::register_synthetic();
+  segmentation::register_shared_maps();
 }

@@ -3,7 +3,7 @@
 # pair when ../shared is present), 5 repetitions each, medians. Writes into OUTDIR (default
 # build/benchmark-results): segmentation.json, matching.json, io.json (Google Benchmark JSON),
 # benchmarks.csv and scaling.svg. Takes about 10 minutes on 2 cores. Pass extra Google Benchmark
-# flags after OUTDIR, e.g. --benchmark_filter=synthetic.
+# flags after OUTDIR (a --benchmark_filter given there replaces each group's own filter).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 out="${1:-build/benchmark-results}"
@@ -12,7 +12,7 @@ scripts/setup.sh >/dev/null
 mkdir -p "$out"
 bench="${AREAMATCH_BUILD_DIR:-build}/benchmarks"
 common=(--benchmark_repetitions=5 --benchmark_report_aggregates_only=true "$@")
-"$bench/bench_segmentation" "${common[@]}" --benchmark_out="$out/segmentation.json" --benchmark_out_format=json
-"$bench/bench_matching" "${common[@]}" --benchmark_out="$out/matching.json" --benchmark_out_format=json
-"$bench/bench_io_synthetic" "${common[@]}" --benchmark_out="$out/io.json" --benchmark_out_format=json
+"$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^(segment|voronoi|voronoi_boost)/' --benchmark_out="$out/segmentation.json" --benchmark_out_format=json
+"$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^(match|pair|onto_prepared)/' --benchmark_out="$out/matching.json" --benchmark_out_format=json
+"$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^BM_' --benchmark_out="$out/io.json" --benchmark_out_format=json
 python3 scripts/plot_benchmarks.py "$out" "$out/segmentation.json" "$out/matching.json" "$out/io.json"

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Turns Google Benchmark JSON output of bench_segmentation and bench_matching into
+"""Turns Google Benchmark JSON output of areamatch_bench (its segment/ and match/ groups) into
   OUTDIR/benchmarks.csv   one line per benchmark: name, real time (ms), iterations, counters
   OUTDIR/scaling.svg      time against building size for the synthetic buildings (log-log)
   OUTDIR/benchmarks.md    the tables of docs/performance.md (segmentation per map, matching per pair)

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Plots how merging grows with the number of maps, from bench_merge's JSON output.
+"""Plots how merging grows with the number of maps, from areamatch_bench's merge/ JSON output.
 
 plot_merge.py MERGE.json OUT.svg
 
