@@ -14,7 +14,14 @@ cd "$(dirname "$0")/.."
 seconds="${1:-60}"
 shift || true
 targets=("$@")
-[ ${#targets[@]} -gt 0 ] || targets=(fuzz_image fuzz_yaml fuzz_segment fuzz_match)
+all_targets=(fuzz_image fuzz_yaml fuzz_segment fuzz_match)
+[ ${#targets[@]} -gt 0 ] || targets=("${all_targets[@]}")
+for t in "${targets[@]}"; do
+  case " ${all_targets[*]} " in
+    *" $t "*) ;;
+    *) echo "fuzz.sh: no target '$t' (targets: ${all_targets[*]})" >&2; exit 2 ;;
+  esac
+done
 
 build="${AREAMATCH_SANITIZE_BUILD_DIR:-build-sanitize}"
 AREAMATCH_BUILD_DIR="$build" scripts/setup.sh --sanitize --target areamatch_fuzz

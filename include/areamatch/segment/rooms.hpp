@@ -160,19 +160,11 @@ std::vector<int> components(const SampleGraph& g, Member&& member, int& count) {
   return comp;
 }
 
-}  // namespace detail
-
-namespace detail {
-
 /// The clearance (metres) a skeleton point needs to lie in a room rather than in a doorway:
 /// half the door width plus half a grid cell, because an opening of exactly W drawn on the grid
 /// measures up to one cell more (quantisation and wall simplification). `detect_rooms` and the
 /// skeleton's spur pruning (`SkeletonParams::keep_clearance_m`) both use it.
 inline double room_clearance_m(double door_width_m, double resolution) { return 0.5 * door_width_m + 0.5 * resolution; }
-
-}  // namespace detail
-
-namespace detail {
 
 /// Rooms are the connected wide parts (clearance ≥ `half_door`, cells) whose widest sample
 /// reaches `half_door + margin`: each becomes a region, its samples labelled.
@@ -391,21 +383,19 @@ inline JunctionArms junction_arms(const RoomDetection& out, int J, double needed
     result.arms.push_back({first, std::atan2(d.y(), d.x())});
   }
   const auto& arms = result.arms;
+  // The region's parts once the junction is removed, each named by the first arm leading into it.
+  int count = 0;
+  const std::vector<int> piece = components(g, [&](int s) { return s != J && region[s] == R; }, count);
+  std::vector<int> arm_of_piece(static_cast<std::size_t>(count), -1);
+  for (std::size_t a = 0; a < arms.size(); ++a) {
+    const int p = piece[arms[a].first];
+    if (p >= 0 && arm_of_piece[p] < 0) arm_of_piece[p] = static_cast<int>(a);
+  }
   std::vector<int>& component = result.part_of_sample;
   component.assign(g.samples.size(), -1);
-  auto flood = [&](int start, int label) {
-    std::vector<int> stack{start};
-    component[start] = label;
-    while (!stack.empty()) {
-      const int u = stack.back();
-      stack.pop_back();
-      for (int v : g.neighbours(u))
-        if (v != J && component[v] < 0 && region[v] == R) component[v] = label, stack.push_back(v);
-    }
-  };
+  for (std::size_t s = 0; s < g.samples.size(); ++s)
+    if (piece[s] >= 0) component[s] = arm_of_piece[piece[s]];
   std::vector<double> part_length(arms.size(), 0.0), part_width(arms.size(), 0.0);
-  for (std::size_t a = 0; a < arms.size(); ++a)
-    if (region[arms[a].first] == R && component[arms[a].first] < 0) flood(arms[a].first, static_cast<int>(a));
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int c = component[s];
     if (c < 0) continue;
