@@ -6,6 +6,7 @@
 
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -290,12 +291,18 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   REQUIRE(run("generate " + dir + " --count 4 --seed 70 --width 15 --height 11").status == 0);
   const std::string out = areamatch_test::temp_dir() + "/calibrate_out";
   REQUIRE(run("eval " + dir + "/pairs.json --cross-buildings --out " + out, false).status == 0);
-  const Run fit = run("calibrate " + out + "/results.csv --svg " + out + "/reliability.svg", false);
+  const Run fit = run("calibrate " + out + "/results.csv --svg " + out + "/reliability.svg --predictions " + out +
+                          "/predictions.csv",
+                      false);
   INFO(fit.out);
   CHECK(fit.status == 0);
   CHECK(fit.out.find("4 buildings") != std::string::npos);
   CHECK(fit.out.find("total (cross-validated)") != std::string::npos);
   CHECK(fit.out.find("fitted on all rows: bias = ") != std::string::npos);
+  // A header and one line per row: 4 pairs of one building, 24 of two.
+  const std::string predictions = read_text(out + "/predictions.csv");
+  CHECK(predictions.rfind("name,source,destination,source_building,dest_building,different_buildings,right,", 0) == 0);
+  CHECK(std::count(predictions.begin(), predictions.end(), '\n') == 29);
   // The thresholds chosen from data, the choice itself cross-validated (nested).
   const Run chosen = run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 0.01", false);
   INFO(chosen.out);

@@ -759,6 +759,9 @@ const char* kCalibrateHelp =
     "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.8)\n"
     "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
     "  --svg OUT.svg      the reliability diagram (cross-validated)\n"
+    "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
+    "                     the in-sample p_correct and whether the rule accepts it (cross-validated):\n"
+    "                     to see which pairs a building's false rejects and accepts are\n"
     "  --choose-rule      also choose A and P from data (the fewest false rejects with at most F of the\n"
     "                     wrong answers accepted, judged on leave-one-building-out predictions) and\n"
     "                     measure that choice by nested leave-one-building-out cross-validation: each\n"
@@ -767,7 +770,7 @@ const char* kCalibrateHelp =
     "  --max-false-accept F  the bound for --choose-rule (default 0.005)\n";
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "svg", "max-false-accept"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "svg", "predictions", "max-false-accept"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -835,6 +838,11 @@ int run_calibrate(const std::vector<std::string>& tokens) {
               << "\n";
   }
   if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(table));
+  if (const auto out = args.text("predictions")) {
+    std::vector<double> in_sample;
+    for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
+    areamatch::write_text_file(*out, predictions_csv(rows, buildings, predicted, in_sample, rule));
+  }
   if (args.flag("choose-rule")) {
     const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
     if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");

@@ -5,7 +5,9 @@
 // pair that touches that building. Program code, not library API.
 
 #include <areamatch/error.hpp>
+#include "eval_report.hpp"
 #include "manifest.hpp"
+#include <areamatch/detail/format.hpp>
 #include <areamatch/match/decision.hpp>
 
 #include <algorithm>
@@ -192,6 +194,28 @@ struct Rule {
   double accept_p = 0.9, min_agreement = 0.835;
   bool accepts(const CalibrationRow& r, double p) const { return p >= accept_p || r.agreement >= min_agreement; }
 };
+
+/// One line per row: its buildings, label, agreement, cross-validated and in-sample p_correct, and
+/// whether `rule` accepts it on the cross-validated p (`areamatch calibrate --predictions`).
+inline std::string predictions_csv(const std::vector<CalibrationRow>& rows, const std::vector<std::string>& buildings,
+                                   const std::vector<double>& cross_validated, const std::vector<double>& in_sample,
+                                   const Rule& rule) {
+  std::ostringstream out;
+  out << "name,source,destination,source_building,dest_building,different_buildings,right,agreement,"
+         "p_correct_cv,p_correct_in_sample,accepted_cv\n";
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const CalibrationRow& r = rows[i];
+    out << areamatch::detail::csv_field(r.name) << ',' << areamatch::detail::csv_field(r.source) << ','
+        << areamatch::detail::csv_field(r.destination) << ','
+        << areamatch::detail::csv_field(buildings[static_cast<std::size_t>(r.source_building)]) << ','
+        << areamatch::detail::csv_field(buildings[static_cast<std::size_t>(r.dest_building)]) << ','
+        << (r.different_buildings ? "true" : "false") << ',' << (r.sample.correct ? "true" : "false") << ','
+        << areamatch::detail::format_double(r.agreement) << ',' << areamatch::detail::format_double(cross_validated[i]) << ','
+        << areamatch::detail::format_double(in_sample[i])
+        << ',' << (rule.accepts(r, cross_validated[i]) ? "true" : "false") << '\n';
+  }
+  return out.str();
+}
 
 /// The thresholds `choose_rule` tries (above 1: that part off).
 inline const std::vector<double>& accept_p_grid() {
