@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -103,6 +104,14 @@ std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds
     const std::uint8_t* below = row + mask_w;
     const std::size_t grid_row = static_cast<std::size_t>(y0 + my) * width;
     for (int mx = 1; mx + 1 < mask_w; ++mx) {
+      if (mx + 8 < mask_w) {  // most cells are outside the region: skip eight at a time
+        std::uint64_t eight;
+        std::memcpy(&eight, row + mx, sizeof eight);
+        if (!eight) {
+          mx += 7;
+          continue;
+        }
+      }
       if (!row[mx] || (row[mx - 1] & row[mx + 1] & above[mx] & below[mx])) continue;
       out.push_back(grid_row + static_cast<std::size_t>(x0 + mx));
     }
