@@ -221,3 +221,66 @@ TEST_CASE("the turn margin: a right answer lies better than its own quarter turn
   bad.params.turn_check_points = 0;
   CHECK_THROWS_WITH_AS(bad.match(robot.grid, building.layout), doctest::Contains("turn_check_points"), parameter_error);
 }
+
+TEST_CASE("walls against walls: a right answer's walls fall on the other map's, also away from the shared free space") {
+  const auto building = generate_building({}, 41);
+  RobotMapParams rp;
+  rp.rotation_rad = 0.9;
+  rp.explored_fraction = 0.5;
+  const RobotMap robot = make_robot_map(building, rp, 44);
+  Matcher<> matcher;
+  const MatchResult r = matcher.match(robot.grid, building.layout);
+  REQUIRE(r.ok);
+  REQUIRE(std::isfinite(r.evidence.occupied_wall_agreement));
+  CHECK(r.evidence.occupied_wall_agreement > 0.7);
+  CHECK(r.evidence.occupied_wall_agreement <= 1.0);
+  CHECK(decision_features(r).values[8] == r.evidence.occupied_wall_agreement);
+
+  // Another building's layout: whatever the best wrong answer, its walls miss.
+  const MatchResult wrong = matcher.match(robot.grid, generate_building({}, 43).layout);
+  CHECK_FALSE(wrong.ok);
+  CHECK(wrong.evidence.occupied_wall_agreement < r.evidence.occupied_wall_agreement);
+
+  // A map without walls near the other's: not measured, and the decision reads 0.
+  MatchResult none;
+  CHECK(std::isnan(none.evidence.occupied_wall_agreement));
+  CHECK(decision_features(none).values[8] == 0.0);
+
+  for (auto set : {+[](MatcherParams& p) { p.occupied_point_spacing_m = 0.0; },
+                   +[](MatcherParams& p) { p.occupied_wall_distance_m = -1.0; },
+                   +[](MatcherParams& p) { p.occupied_wall_context_m = 0.1; }}) {
+    Matcher<> bad;
+    set(bad.params);
+    CHECK_THROWS_WITH_AS(bad.match(robot.grid, building.layout), doctest::Contains("occupied_"), parameter_error);
+  }
+}
+
+TEST_CASE("walls against walls: the bit masks grow by exactly the radius, across word boundaries") {
+  // Against a brute-force square dilation: widths around a word's 64 bits and radii from none to
+  // more than a word (a context of 7 m on 0.1 m cells), a few scattered cells and a full row.
+  std::uint32_t state = 12345;
+  auto next = [&] { return state = state * 1664525u + 1013904223u; };
+  for (const int width : {1, 63, 64, 65, 130}) {
+    const int height = 40;
+    detail::BitRaster mask(width, height);
+    for (int i = 0; i < 6; ++i) mask.set(static_cast<int>(next() % static_cast<std::uint32_t>(width)), static_cast<int>(next() % 40u));
+    for (int x = 0; x < width; ++x) mask.set(x, 39);
+    for (const int radius : {0, 1, 2, 3, 15, 70}) {
+      const detail::BitRaster grown = detail::dilated(mask, radius);
+      int mismatches = 0;
+      for (int y = 0; y < height; ++y) {
+        for (int x = 0; x < width; ++x) {
+          bool expected = false;
+          for (int v = std::max(0, y - radius); v <= std::min(height - 1, y + radius) && !expected; ++v) {
+            for (int u = std::max(0, x - radius); u <= std::min(width - 1, x + radius) && !expected; ++u) expected = mask.test(u, v);
+          }
+          mismatches += grown.test(x, y) != expected;
+        }
+      }
+      INFO("width " << width << ", radius " << radius);
+      CHECK(mismatches == 0);
+      // Nothing beyond the width: the last word's spare bits stay clear.
+      if (width % 64) CHECK((grown.row(0)[grown.words_per_row - 1] >> (width % 64)) == 0);
+    }
+  }
+}

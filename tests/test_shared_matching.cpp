@@ -279,7 +279,7 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
 TEST_CASE("merging the F5 floor with a scan of each apartment: the floor placed, the apartments not") {
   // A merge tries every pair, so one falsely accepted match would place a map of another place:
   // KPT4A_02 has exactly one accepted match here (onto F5_07, accepted by the model alone at
-  // p_correct 0.81), which MergeParams::lone_match_min_p_correct keeps out (docs/merging.md).
+  // p_correct 0.89), which MergeParams::lone_match_min_p_correct keeps out (docs/merging.md).
   const std::string shared = areamatch_test::shared_dir();
   if (shared.empty()) return;
   const std::string dir = shared + "/handheld/maps/";

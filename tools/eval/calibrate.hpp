@@ -83,6 +83,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
                     c_forward = column("forward_wall_agreement"), c_reverse = column("reverse_wall_agreement"),
                     c_rooms = column("room_agreement"), c_confidence = column("confidence"), c_overlap = column("overlap_m2"),
                     c_turn = column("turn_margin"), c_iou = column("free_iou"),
+                    c_occupied = column("occupied_wall_agreement"),
                     c_p = column("p_correct"), c_agreement = column("agreement");
   auto value = [&](const std::vector<std::string>& f, std::size_t c) {
     return f[c].empty() ? std::nan("") : std::stod(f[c]);
@@ -112,6 +113,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     r.evidence.overlap_m2 = value(f, c_overlap);
     r.evidence.turn_margin = value(f, c_turn);
     r.evidence.free_iou = value(f, c_iou);
+    r.evidence.occupied_wall_agreement = value(f, c_occupied);
     r.confidence = value(f, c_confidence);
     row.sample.features = areamatch::decision_features(r);
     row.agreement = value(f, c_agreement);

@@ -115,7 +115,8 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"dest_on_source\": " + json_number(e.dest_on_source) +
          ", \"passage_agreement\": " + json_number(e.passage_agreement) +
          ", \"room_agreement\": " + json_number(e.room_agreement) +
-         ", \"overlap_m2\": " + json_number(e.overlap_m2) + ", \"turn_margin\": " + json_number(e.turn_margin) + "}";
+         ", \"overlap_m2\": " + json_number(e.overlap_m2) + ", \"turn_margin\": " + json_number(e.turn_margin) +
+         ", \"occupied_wall_agreement\": " + json_number(e.occupied_wall_agreement) + "}";
   out += ", \"matched_areas\": [";
   for (std::size_t i = 0; i < r.matched_areas.size(); ++i) {
     const auto& a = r.matched_areas[i];

@@ -12,6 +12,7 @@
 #include "../area_graph.hpp"
 #include "../grid.hpp"
 #include "../transform.hpp"
+#include "occupied_walls.hpp"
 #include "raster.hpp"
 #include "refine.hpp"
 #include "result.hpp"
@@ -38,6 +39,8 @@ struct MapEdges {
   const std::vector<Eigen::Vector2d>& dest_walls;
   const BoundaryLookup& source_lookup;
   const BoundaryLookup& dest_lookup;
+  const OccupiedWalls& source_occupied;  ///< the occupied cells (walls against walls)
+  const OccupiedWalls& dest_occupied;
 };
 
 /// Whether a world point is in, or within one raster cell of, a labelled cell of `raster`.

@@ -7,6 +7,7 @@
 #include "../area_graph.hpp"
 #include "../grid.hpp"
 #include "evidence.hpp"
+#include "occupied_walls.hpp"
 #include "hypotheses.hpp"
 #include "params.hpp"
 #include "raster.hpp"
@@ -32,6 +33,7 @@ struct MapData {
   std::vector<Eigen::Vector2d> walls;        ///< edge_points without frontiers
   std::vector<std::size_t> free_edge;        ///< the free-space edge cells (`detail::free_edge_cells`)
   BoundaryLookup lookup;                     ///< dense free-space edge: what is landed on
+  OccupiedWalls occupied;                    ///< the occupied cells, for walls against walls
   const AreaRaster& fine() const { return fine_own ? *fine_own : coarse; }
 };
 
@@ -46,14 +48,15 @@ struct MapView {
 /// The parameters that shape `MapData`: a prepared map serves the matchers that agree on them.
 struct MapDataKey {
   double coarse_cell_m = 0.0, fine_cell_m = 0.0, point_spacing_m = 0.0, lookup_cell_m = 0.0, margin_m = 0.0,
-         normal_radius_m = 0.0;
+         normal_radius_m = 0.0, occupied_spacing_m = 0.0, occupied_near_m = 0.0, occupied_context_m = 0.0;
   int max_points = 0;
   bool wall_directions = false;
   WallDirectionParams wall_direction;
   bool operator==(const MapDataKey& o) const {
     return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
            lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
-           max_points == o.max_points && wall_directions == o.wall_directions && wall_direction == o.wall_direction;
+           occupied_spacing_m == o.occupied_spacing_m &&
+           occupied_near_m == o.occupied_near_m && occupied_context_m == o.occupied_context_m && max_points == o.max_points && wall_directions == o.wall_directions && wall_direction == o.wall_direction;
   }
 };
 
@@ -70,7 +73,8 @@ inline double lookup_margin(const MatcherParams& params) {
 inline MapDataKey map_data_key(const MatcherParams& params, bool normals) {
   const RefineParams& r = params.refinement;
   return {params.coarse_cell_m, params.fine_cell_m, r.point_spacing_m, r.lookup_cell_m, lookup_margin(params),
-          normals && r.point_to_line ? r.normal_radius_m : 0.0, r.max_points, params.hypotheses.wall_directions,
+          normals && r.point_to_line ? r.normal_radius_m : 0.0, params.occupied_point_spacing_m,
+          params.occupied_wall_distance_m, params.occupied_wall_context_m, r.max_points, params.hypotheses.wall_directions,
           params.hypotheses.wall_direction};
 }
 
@@ -89,6 +93,8 @@ auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Fea
   d.walls = without_frontiers(grid, d.edge_points);
   d.lookup = BoundaryLookup(boundary_points(graph.grid, d.free_edge, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
                             lookup_margin(params), normals && r.point_to_line ? r.normal_radius_m : 0.0);
+  d.occupied = occupied_walls(grid, graph.grid, params.occupied_point_spacing_m, r.lookup_cell_m, params.occupied_wall_distance_m,
+                              params.occupied_wall_context_m);
   return d;
 }
 
@@ -96,7 +102,7 @@ auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Fea
 /// (what is landed on), so that scores and evidence can look both ways.
 template <class Descriptors>
 MapEdges map_edges(const MapData<Descriptors>& source, const MapData<Descriptors>& dest) {
-  return MapEdges{source.edge_points, source.walls, dest.walls, source.lookup, dest.lookup};
+  return MapEdges{source.edge_points, source.walls, dest.walls, source.lookup, dest.lookup, source.occupied, dest.occupied};
 }
 
 }  // namespace areamatch::detail

@@ -57,6 +57,14 @@ struct MatcherParams {
   /// the other slide along a corridor; edges pin room dividers.
   double wall_score_weight = 1.0;
   double wall_inlier_distance_m = 0.3;
+  /// Walls against walls (`MatchEvidence::occupied_wall_agreement`): each map's occupied cells
+  /// are thinned to one per `occupied_point_spacing_m` square; those landing within
+  /// `occupied_wall_context_m` of the other map's occupied cells count, and agree when within
+  /// `occupied_wall_distance_m`. 0.25 m: a wall drawn one or two cells thick in either map, like
+  /// `wall_inlier_distance_m`; 1.5 m: a room's width apart is another wall, not this one misplaced.
+  double occupied_point_spacing_m = 0.15;
+  double occupied_wall_distance_m = 0.25;
+  double occupied_wall_context_m = 1.5;
   /// Passages of the two maps this close under the result count as the same (evidence only).
   double passage_distance_m = 1.0;
   /// The answer's quarter turns and mirror images are refined on at most about this many of the
@@ -128,6 +136,11 @@ struct MatcherParams {
     detail::require_positive(coarse_cell_m, "MatcherParams::coarse_cell_m");
     detail::require_positive(fine_cell_m, "MatcherParams::fine_cell_m");
     detail::require_positive(candidate_wall_distance_m, "MatcherParams::candidate_wall_distance_m");
+    detail::require_positive(occupied_point_spacing_m, "MatcherParams::occupied_point_spacing_m");
+    detail::require_positive(occupied_wall_distance_m, "MatcherParams::occupied_wall_distance_m");
+    if (!(occupied_wall_context_m >= occupied_wall_distance_m && std::isfinite(occupied_wall_context_m))) {
+      throw parameter_error("MatcherParams::occupied_wall_context_m must be finite and at least occupied_wall_distance_m");
+    }
     if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1 ||
         turn_check_points < 1) {
       throw parameter_error("MatcherParams: members_per_cluster, sparse_samples, verify_candidates, "

@@ -50,6 +50,14 @@ struct MatchEvidence {
   /// building of repeated rooms a wrong answer is often the right one turned; two different
   /// buildings agree about as badly in every turn. NaN when not measured.
   double turn_margin = std::numeric_limits<double>::quiet_NaN();
+  /// Walls against walls: of each map's occupied cells (their surfaces, one per
+  /// `MatcherParams::occupied_point_spacing_m` square) that land within
+  /// `occupied_wall_context_m` of the other map's, the share within `occupied_wall_distance_m`;
+  /// the lower of the two directions. Unlike the measures above it sees walls away from both
+  /// maps' free space — the walls of rooms a robot saw but never entered — where two alike
+  /// buildings that agree in their shared part still differ. NaN when neither map's walls come
+  /// near the other's.
+  double occupied_wall_agreement = std::numeric_limits<double>::quiet_NaN();
 };
 
 /// A source area, the destination area it corresponds to, and the area's own transform
