@@ -257,13 +257,19 @@ TEST_CASE("walls against walls: a right answer's walls fall on the other map's, 
 
 TEST_CASE("walls against walls: the bit masks grow by exactly the radius, across word boundaries") {
   // Against a brute-force square dilation: widths around a word's 64 bits and radii from none to
-  // more than a word (a context of 7 m on 0.1 m cells), a few scattered cells and a full row.
+  // more than a word (a context of 7 m on 0.1 m cells), a few scattered cells, a corner and a
+  // full row.
   std::uint32_t state = 12345;
   auto next = [&] { return state = state * 1664525u + 1013904223u; };
   for (const int width : {1, 63, 64, 65, 130}) {
     const int height = 40;
     detail::BitRaster mask(width, height);
-    for (int i = 0; i < 6; ++i) mask.set(static_cast<int>(next() % static_cast<std::uint32_t>(width)), static_cast<int>(next() % 40u));
+    for (int i = 0; i < 6; ++i) {
+      const auto x = static_cast<int>(next() % static_cast<std::uint32_t>(width));  // two statements: the
+      const auto y = static_cast<int>(next() % 40u);  // order of a call's arguments is unspecified
+      mask.set(x, y);
+    }
+    mask.set(0, 0);  // a corner: growing from it must not skip cells whose path leaves the raster
     for (int x = 0; x < width; ++x) mask.set(x, 39);
     for (const int radius : {0, 1, 2, 3, 15, 70}) {
       const detail::BitRaster grown = detail::dilated(mask, radius);

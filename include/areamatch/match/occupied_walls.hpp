@@ -73,15 +73,17 @@ inline void or_shifted_rows(const BitRaster& in, int k, BitRaster& out) {
 }
 
 /// `mask` grown by `radius` cells in x and y (a square). Separable, and each direction in steps
-/// that grow: a set cell covering the offsets up to `reach` covers those up to `reach + k` after
-/// OR-ing in the mask shifted by ±k, without a gap while k ≤ 2 reach + 1 — so 1, 3, 9, ... and a
-/// radius of 15 cells costs four passes of whole words per direction.
+/// that double: a set cell covering the offsets up to `reach` covers those up to `reach + k` after
+/// OR-ing in the mask shifted by ±k. k ≤ reach + 1 keeps that exact at the raster's edges too (a
+/// cell reached by a longer step would come through an intermediate cell beyond the edge, which
+/// the shift drops) — so 1, 2, 4, ... and a radius of 15 cells costs four passes of whole words
+/// per direction.
 inline BitRaster dilated(const BitRaster& mask, int radius) {
   BitRaster out = mask;
   auto steps = [radius] {
     std::vector<int> k;
     for (int reach = 0; reach < radius;) {
-      const int step = std::min(2 * reach + 1, radius - reach);  // no gap: a step at most 2 reach + 1
+      const int step = std::min(reach + 1, radius - reach);
       k.push_back(step);
       reach += step;
     }
