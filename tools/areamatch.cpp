@@ -791,6 +791,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   for (const auto& r : rows) all.push_back(r.sample);
   const areamatch::DecisionParams fitted = areamatch::fit_decision(all, l2, base);
   const std::vector<double> predicted = leave_one_building_out(rows, l2, base);
+  std::vector<double> in_sample;
+  for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
 
   const Rule rule{base.accept_p_correct, gate}, model_half{0.5, 2.0}, gate_alone{2.0, gate};
   std::vector<DecisionCounts> per_building(buildings.size());
@@ -799,7 +801,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     const CalibrationRow& r = rows[i];
     const bool accepted = rule.accepts(r, predicted[i]);
     cv_total.add(r.sample.correct, r.different_buildings, accepted);
-    in_sample_total.add(r.sample.correct, r.different_buildings, rule.accepts(r, areamatch::p_correct(r.sample.features, fitted)));
+    in_sample_total.add(r.sample.correct, r.different_buildings, rule.accepts(r, in_sample[i]));
     cv_model_half.add(r.sample.correct, r.different_buildings, model_half.accepts(r, predicted[i]));
     gate_only.add(r.sample.correct, r.different_buildings, gate_alone.accepts(r, 0.0));
     DecisionCounts::add_per_building(per_building, r, accepted);
@@ -839,8 +841,6 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   }
   if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(table));
   if (const auto out = args.text("predictions")) {
-    std::vector<double> in_sample;
-    for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
     areamatch::write_text_file(*out, predictions_csv(rows, buildings, predicted, in_sample, rule));
   }
   if (args.flag("choose-rule")) {

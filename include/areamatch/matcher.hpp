@@ -407,8 +407,6 @@ class Matcher {
         source_fine, dest_fine, edges.dest_lookup, best.T, params.correspondences);
     result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
-    result.evidence.occupied_wall_agreement =
-        detail::occupied_wall_agreement(edges.source_occupied, edges.dest_occupied, best.T);
     if (selected.refined) {
       detail::measure_turn_margin(source_fine, dest_fine, edges, dest_data.wall_direction, params, result);
     }

@@ -106,6 +106,7 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   const auto [forward, reverse] = overlap_wall_agreements(source_raster, dest_raster, edges, T_dest_source, wall_inlier_distance_m);
   e.forward_wall_agreement = forward;
   e.reverse_wall_agreement = reverse;
+  e.occupied_wall_agreement = detail::occupied_wall_agreement(edges.source_occupied, edges.dest_occupied, T_dest_source);
 
   // Cell overlaps per area pair, from the source cells.
   const std::size_t ns = source.areas.size(), nd = dest.areas.size();

@@ -55,8 +55,9 @@ struct MapDataKey {
   bool operator==(const MapDataKey& o) const {
     return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
            lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
-           occupied_spacing_m == o.occupied_spacing_m &&
-           occupied_near_m == o.occupied_near_m && occupied_context_m == o.occupied_context_m && max_points == o.max_points && wall_directions == o.wall_directions && wall_direction == o.wall_direction;
+           occupied_spacing_m == o.occupied_spacing_m && occupied_near_m == o.occupied_near_m &&
+           occupied_context_m == o.occupied_context_m && max_points == o.max_points &&
+           wall_directions == o.wall_directions && wall_direction == o.wall_direction;
   }
 };
 
