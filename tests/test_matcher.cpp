@@ -608,6 +608,75 @@ TEST_CASE("point-to-line ICP pins a map sliding along a corridor to its room div
   MESSAGE("point-to-point ends " << point_fit.translation.norm() << " m off, point-to-line " << line_fit.translation.norm() << " m");
   CHECK(line_fit.translation.norm() <= point_fit.translation.norm());
 }
+namespace {
+
+/// A corridor (y 0.5–2 m) under a wall 0.2 m thick and a room as long above it (y 2.2–6 m), 0.05 m
+/// cells; the room free when `room_entered`, else walled in (another map's robot never went in).
+OccupancyGrid corridor_and_room(bool room_entered) {
+  OccupancyGrid grid(240, 140, 0.05, {}, CellState::unknown);
+  for (int row = 0; row < grid.height(); ++row) {
+    for (int col = 0; col < grid.width(); ++col) {
+      const Eigen::Vector2d p = grid.cell_center(col, row);
+      const bool inside = p.x() > 0.5 && p.x() < 11.5 && p.y() > 0.3 && p.y() < 6.2;
+      if (!inside) continue;
+      const bool corridor = p.x() > 0.7 && p.x() < 11.3 && p.y() > 0.5 && p.y() < 2.0;
+      const bool room = p.x() > 0.7 && p.x() < 11.3 && p.y() > 2.2 && p.y() < 6.0;
+      grid.set(col, row, corridor || (room && room_entered) ? CellState::free : CellState::occupied);
+    }
+  }
+  return grid;
+}
+
+/// World centres of the free cells with a 4-neighbour that is not free.
+std::vector<Eigen::Vector2d> free_edge_points(const OccupancyGrid& grid) {
+  std::vector<Eigen::Vector2d> points;
+  auto free = [&](int col, int row) { return grid.contains(col, row) && grid.is_free(col, row); };
+  for (int row = 0; row < grid.height(); ++row) {
+    for (int col = 0; col < grid.width(); ++col) {
+      if (free(col, row) && !(free(col - 1, row) && free(col + 1, row) && free(col, row - 1) && free(col, row + 1))) {
+        points.push_back(grid.cell_center(col, row));
+      }
+    }
+  }
+  return points;
+}
+
+}  // namespace
+
+TEST_CASE("ICP pairs a wall's face only with a face looking the same way") {
+  // The source entered the room, the destination did not: the room's floor-side face lies 0.2 m
+  // above the corridor's ceiling-side face, and pairing the two would pull the map across the wall.
+  const OccupancyGrid source_grid = corridor_and_room(true), dest_grid = corridor_and_room(false);
+  const std::vector<Eigen::Vector2d> source = free_edge_points(source_grid);
+  BoundaryLookup dest(free_edge_points(dest_grid), 0.1, 2.0, 0.2);
+  RefineParams params;
+  params.same_side_only = true;
+  dest.set_sides(detail::free_sides(dest_grid, dest.points(), params.free_side_radius_m));
+  const std::vector<Eigen::Vector2d> sides = detail::free_sides(source_grid, source, params.free_side_radius_m);
+  // Sides point into the free space: up on the corridor's floor, down on its ceiling.
+  auto side_near = [&](const Eigen::Vector2d& p) {
+    std::size_t best = 0;
+    for (std::size_t i = 0; i < source.size(); ++i) {
+      if ((source[i] - p).norm() < (source[best] - p).norm()) best = i;
+    }
+    return sides[best];
+  };
+  CHECK(side_near({5.0, 0.52}).y() > 0.9);
+  CHECK(side_near({5.0, 2.23}).y() > 0.9);  // the room's floor
+  CHECK(dest.side_at(dest.nearest({5.0, 1.98})).y() < -0.9);
+  Similarity2 start;
+  start.translation = Eigen::Vector2d(0.12, 0.15);
+  start.rotation = 0.01;
+  const Similarity2 same_side = refine_icp(source, dest, start, params, &sides);
+  params.same_side_only = false;
+  const Similarity2 any_side = refine_icp(source, dest, start, params, &sides);
+  MESSAGE("same side only: " << same_side.translation.norm() << " m off; any side: " << any_side.translation.norm() << " m off");
+  CHECK(same_side.translation.norm() < 0.01);
+  CHECK(std::abs(same_side.rotation) < 1e-3);
+  CHECK(any_side.translation.norm() > 0.05);
+  CHECK_THROWS_AS(dest.set_sides({}), parameter_error);
+}
+
 TEST_CASE("prepared maps: the same results as matching the grids, bit for bit; a mismatched matcher refuses them") {
   const auto c = areamatch_test::synthetic_case(11);
   Matcher<> matcher;

@@ -15,7 +15,9 @@
 ///  1. **Pairwise matches** between the prepared maps (`MergeStrategy`): each pair matched once,
 ///     the map with less free space onto the one with more (a partial map onto a fuller one is the
 ///     direction the matcher is built and calibrated for). Only accepted matches (`ok`) become
-///     edges, weighted by their `p_correct`.
+///     edges, weighted by their `p_correct`. Each accepted match is refined once more by ICP that
+///     pairs a wall only with a wall facing the same way (`MergeParams::refine_same_side`): two
+///     partial maps' rooms that only one of them entered otherwise pull it a wall's thickness off.
 ///  2. **Poses** by a weighted least-squares fit over all edges at once (merge/pose_graph.hpp):
 ///     the reference map (`MergeParams::reference`) fixes the frame. An edge the fit contradicts
 ///     (its anchors land more than `MergeParams::max_residual_m` apart both ways round) is dropped,
@@ -30,6 +32,9 @@
 #include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
+#include "match/map_data.hpp"
+#include "match/params.hpp"
+#include "match/refine.hpp"
 #include "match/result.hpp"
 #include "merge/fuse.hpp"
 #include "merge/pose_graph.hpp"
@@ -76,6 +81,12 @@ struct MergeParams {
   /// Threads matching pairs at once (`all_pairs` only; 0: one per hardware thread). The results
   /// are the same, bit for bit, for any count: each pair's match lands in its own place.
   unsigned threads = 1;
+  /// Refine each accepted match before the pose fit (when the matcher refines at all) by ICP from
+  /// its transform with the matcher's last (smallest) gate, pairing each wall point with the
+  /// nearest wall facing the same way (`RefineParams::same_side_only`). The matcher's ICP pairs nearest points, and where one
+  /// partial map entered a room the other did not, that room's side of a wall is pulled onto the
+  /// other side: N = 2 generated merges placed maps up to 0.13 m off (0.013 m with this).
+  bool refine_same_side = true;
   /// Build the merged grid (false: poses only).
   bool build_merged_map = true;
   /// The maps' names in messages (e.g. their paths); "map i" when empty.
@@ -102,6 +113,9 @@ struct MergeEdge {
   std::size_t source = 0;   ///< index of the map matched onto `dest`
   std::size_t dest = 0;
   MatchResult match;
+  /// The transform the pose fit uses: `match.T_dest_source`, refined when accepted
+  /// (`MergeParams::refine_same_side`).
+  Similarity2 T_dest_source;
   /// Whether the edge took part in the final pose fit (accepted and not contradicted).
   bool used = false;
   /// Why not used: the match's rejection reason, or the contradiction; empty when used.
@@ -125,6 +139,7 @@ struct MergedMap {
 /// Wall-clock seconds per step.
 struct MergeTimings {
   double matching_s = 0.0;
+  double refine_s = 0.0;  ///< `MergeParams::refine_same_side`
   double fit_s = 0.0;
   double fuse_s = 0.0;
   double total_s = 0.0;
@@ -173,6 +188,51 @@ inline std::vector<Eigen::Vector2d> match_anchors(const AreaGraph& source_graph,
 
 inline double free_area_m2(const OccupancyGrid& grid) {
   return static_cast<double>(grid.count().free) * grid.resolution() * grid.resolution();
+}
+
+/// One map's free-space edge with the side each point faces (`free_sides`), as the matcher's
+/// parameters sample it: the points that move and a lookup with normals and sides to land on.
+struct FacingEdges {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Vector2d> sides;
+  BoundaryLookup lookup;
+};
+
+inline FacingEdges facing_edges(const OccupancyGrid& grid, const AreaGraph& graph, const MatcherParams& params) {
+  const RefineParams& r = params.refinement;
+  const std::vector<std::size_t> cells = free_edge_cells(grid, graph);
+  FacingEdges e;
+  e.points = boundary_points(graph.grid, cells, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
+  e.sides = free_sides(grid, e.points, r.free_side_radius_m);
+  e.lookup = BoundaryLookup(boundary_points(graph.grid, cells, 0.5 * r.lookup_cell_m), r.lookup_cell_m, lookup_margin(params),
+                            r.point_to_line ? r.normal_radius_m : 0.0);
+  e.lookup.set_sides(free_sides(grid, e.lookup.points(), r.free_side_radius_m));
+  return e;
+}
+
+/// Refines the accepted, trusted edges' transforms (`MergeParams::refine_same_side`); each map's
+/// edges are built once, and only for maps such an edge joins.
+template <class Maps>
+void refine_edges_same_side(const Maps& maps, const MatcherParams& matcher_params, std::vector<MergeEdge>& edges,
+                            const std::vector<char>& trusted, unsigned threads) {
+  std::vector<char> needed(maps.size(), 0);
+  for (std::size_t e = 0; e < edges.size(); ++e) {
+    if (trusted[e]) needed[edges[e].source] = needed[edges[e].dest] = 1;
+  }
+  std::vector<FacingEdges> facing(maps.size());
+  for_each_index(maps.size(), threads, [&](std::size_t m) {
+    if (needed[m] && !maps[m].graph().areas.empty()) facing[m] = facing_edges(maps[m].grid(), maps[m].graph(), matcher_params);
+  });
+  RefineParams refinement = matcher_params.refinement;
+  refinement.same_side_only = true;
+  refinement.estimate_scale = false;
+  refinement.gates_m = {refinement.gates_m.back()};  // the match is near: only the last gate's pairs
+  for_each_index(edges.size(), threads, [&](std::size_t e) {
+    MergeEdge& edge = edges[e];
+    if (!trusted[e]) return;
+    const FacingEdges& source = facing[edge.source];
+    edge.T_dest_source = refine_icp(source.points, facing[edge.dest].lookup, edge.T_dest_source, refinement, &source.sides);
+  });
 }
 
 }  // namespace detail
@@ -232,6 +292,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
     });
   }
   for (auto& edge : result.edges) {
+    edge.T_dest_source = edge.match.T_dest_source;
     if (!edge.match.ok) edge.note = "rejected: " + edge.match.reason;
   }
   // A lone match accepted by the model alone below lone_match_min_p_correct is not trusted.
@@ -256,6 +317,13 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
                 detail::format_double(params.lone_match_min_p_correct) + " it is not trusted alone";
   }
   const auto matched = std::chrono::steady_clock::now();
+  const bool refine = params.refine_same_side && matcher.params.refine;
+  if (refine) {
+    std::vector<char> trusted(result.edges.size(), 0);
+    for (std::size_t e = 0; e < result.edges.size(); ++e) trusted[e] = result.edges[e].match.ok && !distrusted[e];
+    detail::refine_edges_same_side(maps, matcher.params, result.edges, trusted, params.threads);
+  }
+  const auto refined = std::chrono::steady_clock::now();
 
   // 2. Poses over the accepted edges; drop the contradicted ones, the worst first.
   std::vector<PoseConstraint> constraints;
@@ -266,7 +334,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
     PoseConstraint c;
     c.source = edge.source;
     c.dest = edge.dest;
-    c.T_dest_source = edge.match.T_dest_source;
+    c.T_dest_source = edge.T_dest_source;
     c.anchors = detail::match_anchors(maps[edge.source].graph(), edge.match, maps[edge.source].grid());
     c.weight = std::max(edge.match.p_correct, 0.01);
     constraints.push_back(std::move(c));
@@ -360,7 +428,8 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   }
   const auto end = std::chrono::steady_clock::now();
   result.timings.matching_s = detail::seconds_between(start, matched);
-  result.timings.fit_s = detail::seconds_between(matched, fitted);
+  result.timings.refine_s = refine ? detail::seconds_between(matched, refined) : 0.0;
+  result.timings.fit_s = detail::seconds_between(refined, fitted);
   result.timings.fuse_s = detail::seconds_between(fitted, end);
   result.timings.total_s = detail::seconds_between(start, end);
   return result;

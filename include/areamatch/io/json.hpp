@@ -183,7 +183,8 @@ inline std::string merge_result_json(const MergeResult& r, const std::vector<std
   out += ", \"timings\": {";
   for (const auto& [key, seconds] : extra_timings) out += json_quote(key) + ": " + json_number(seconds) + ", ";
   const MergeTimings& t = r.timings;
-  out += "\"matching_s\": " + json_number(t.matching_s) + ", \"fit_s\": " + json_number(t.fit_s) +
+  out += "\"matching_s\": " + json_number(t.matching_s) + ", \"refine_s\": " + json_number(t.refine_s) +
+         ", \"fit_s\": " + json_number(t.fit_s) +
          ", \"fuse_s\": " + json_number(t.fuse_s) + ", \"merge_s\": " + json_number(t.total_s) + "}}";
   return out;
 }

@@ -35,6 +35,7 @@ namespace detail {
 /// Views of what each map holds (built once per map, `Matcher::prepare`).
 struct MapEdges {
   const std::vector<Eigen::Vector2d>& source_points;
+  const std::vector<Eigen::Vector2d>& source_sides;  ///< their free sides (empty when not used)
   const std::vector<Eigen::Vector2d>& source_walls;
   const std::vector<Eigen::Vector2d>& dest_walls;
   const BoundaryLookup& source_lookup;

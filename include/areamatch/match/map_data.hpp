@@ -30,6 +30,7 @@ struct MapData {
   std::optional<AreaRaster> fine_own;        ///< on fine cells, when they differ from the coarse ones
   double wall_direction = 0.0;               ///< for wall-direction hypotheses
   std::vector<Eigen::Vector2d> edge_points;  ///< sparse free-space edge: what moves (ICP, scores)
+  std::vector<Eigen::Vector2d> edge_sides;   ///< each edge point's free side (`free_sides`; empty unless used)
   std::vector<Eigen::Vector2d> walls;        ///< edge_points without frontiers
   std::vector<std::size_t> free_edge;        ///< the free-space edge cells (`detail::free_edge_cells`)
   BoundaryLookup lookup;                     ///< dense free-space edge: what is landed on
@@ -48,7 +49,8 @@ struct MapView {
 /// The parameters that shape `MapData`: a prepared map serves the matchers that agree on them.
 struct MapDataKey {
   double coarse_cell_m = 0.0, fine_cell_m = 0.0, point_spacing_m = 0.0, lookup_cell_m = 0.0, margin_m = 0.0,
-         normal_radius_m = 0.0, occupied_spacing_m = 0.0, occupied_near_m = 0.0, occupied_context_m = 0.0;
+         normal_radius_m = 0.0, occupied_spacing_m = 0.0, occupied_near_m = 0.0, occupied_context_m = 0.0,
+         free_side_radius_m = 0.0;  // 0: no free sides
   int max_points = 0;
   bool wall_directions = false;
   WallDirectionParams wall_direction;
@@ -56,7 +58,8 @@ struct MapDataKey {
     return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
            lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
            occupied_spacing_m == o.occupied_spacing_m && occupied_near_m == o.occupied_near_m &&
-           occupied_context_m == o.occupied_context_m && max_points == o.max_points &&
+           occupied_context_m == o.occupied_context_m && free_side_radius_m == o.free_side_radius_m &&
+           max_points == o.max_points &&
            wall_directions == o.wall_directions && wall_direction == o.wall_direction;
   }
 };
@@ -75,7 +78,8 @@ inline MapDataKey map_data_key(const MatcherParams& params, bool normals) {
   const RefineParams& r = params.refinement;
   return {params.coarse_cell_m, params.fine_cell_m, r.point_spacing_m, r.lookup_cell_m, lookup_margin(params),
           normals && r.point_to_line ? r.normal_radius_m : 0.0, params.occupied_point_spacing_m,
-          params.occupied_wall_distance_m, params.occupied_wall_context_m, r.max_points, params.hypotheses.wall_directions,
+          params.occupied_wall_distance_m, params.occupied_wall_context_m, r.same_side_only ? r.free_side_radius_m : 0.0,
+          r.max_points, params.hypotheses.wall_directions,
           params.hypotheses.wall_direction};
 }
 
@@ -94,6 +98,10 @@ auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Fea
   d.walls = without_frontiers(grid, d.edge_points);
   d.lookup = BoundaryLookup(boundary_points(graph.grid, d.free_edge, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
                             lookup_margin(params), normals && r.point_to_line ? r.normal_radius_m : 0.0);
+  if (r.same_side_only) {  // which way each wall faces, so that ICP does not pair a wall's two faces
+    d.edge_sides = free_sides(grid, d.edge_points, r.free_side_radius_m);
+    if (normals) d.lookup.set_sides(free_sides(grid, d.lookup.points(), r.free_side_radius_m));
+  }
   d.occupied = occupied_walls(grid, graph.grid, params.occupied_point_spacing_m, r.lookup_cell_m, params.occupied_wall_distance_m,
                               params.occupied_wall_context_m);
   return d;
@@ -103,7 +111,8 @@ auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Fea
 /// (what is landed on), so that scores and evidence can look both ways.
 template <class Descriptors>
 MapEdges map_edges(const MapData<Descriptors>& source, const MapData<Descriptors>& dest) {
-  return MapEdges{source.edge_points, source.walls, dest.walls, source.lookup, dest.lookup, source.occupied, dest.occupied};
+  return MapEdges{source.edge_points, source.edge_sides, source.walls, dest.walls, source.lookup, dest.lookup,
+                  source.occupied, dest.occupied};
 }
 
 }  // namespace areamatch::detail

@@ -84,9 +84,10 @@ inline void measure_turn_margin(const AreaRaster& source_fine, const AreaRaster&
   const RefineParams refinement = finalist_refinement(params);
   // A rival needs only to be placed well enough to be scored: its ICP runs on fewer points.
   const std::vector<Eigen::Vector2d> points = evenly_thinned(edges.source_points, params.turn_check_points);
+  const std::vector<Eigen::Vector2d> sides = evenly_thinned(edges.source_sides, params.turn_check_points);
   std::vector<double> walls(alternatives.size());
   for_each_index(alternatives.size(), params.threads, [&](std::size_t i) {
-    const Similarity2 refined = refine_icp(points, edges.dest_lookup, alternatives[i], refinement);
+    const Similarity2 refined = refine_icp(points, edges.dest_lookup, alternatives[i], refinement, &sides);
     const auto [forward, reverse] = overlap_wall_agreements(source_fine, dest_fine, edges, refined, params.wall_inlier_distance_m);
     walls[i] = std::max(forward, reverse);
   });

@@ -7,7 +7,9 @@
 /// lacks do not pull the result. Each step minimises the distances to the destination's walls
 /// along their normals (point-to-line), so the walls across a corridor pin a map sliding along
 /// it; point-to-point steps, which pull every point towards its nearest boundary point, stop
-/// short there.
+/// short there. A point is paired with the nearest wall that faces free space the same way: the
+/// two faces of a wall between a room one map entered and one only the other did look opposite
+/// ways, a wall's thickness apart, and would pull the map across it.
 
 #include "../area_graph.hpp"
 #include "../error.hpp"
@@ -20,6 +22,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
@@ -49,6 +52,16 @@ struct RefineParams {
   /// The destination's wall normals come from its boundary points within this radius (the
   /// matcher builds its destination lookup with `MatcherParams::refinement`'s).
   double normal_radius_m = 0.2;
+  /// Pair a source edge point with the nearest destination edge point that faces the same way
+  /// (`BoundaryLookup::nearest_facing`, when both maps' free sides are known: `free_sides`),
+  /// not merely the nearest. Across a wall the two faces look opposite ways; without this, the
+  /// face of a room only one map entered is pulled onto the other face of its wall, a wall's
+  /// thickness away (0.11–0.13 m off on partial robot maps). Off in the matcher (measured there,
+  /// not adopted: docs/matching.md); merging refines its accepted matches with it (`MergeParams`).
+  bool same_side_only = false;
+  /// An edge point's free side: the direction to the free cells within this radius, less the
+  /// direction to the others (at least the point's 8 neighbours).
+  double free_side_radius_m = 0.1;
   /// A gate's iterations stop early once a step turns by less than `converged_rad` and moves by
   /// less than `converged_m` (and, fitting the scale, changes it by a factor within
   /// `converged_scale` of 1): far below what the evidence can tell apart, so more steps change
@@ -66,6 +79,7 @@ struct RefineParams {
     if (max_points < 3) throw parameter_error("RefineParams::max_points must be >= 3");
     detail::require_positive(lookup_cell_m, "RefineParams::lookup_cell_m");
     detail::require_positive(normal_radius_m, "RefineParams::normal_radius_m");
+    detail::require_positive(free_side_radius_m, "RefineParams::free_side_radius_m");
     detail::require_non_negative(converged_rad, "RefineParams::converged_rad");
     detail::require_non_negative(converged_m, "RefineParams::converged_m");
     detail::require_non_negative(converged_scale, "RefineParams::converged_scale");
@@ -177,6 +191,34 @@ inline std::vector<Eigen::Vector2d> free_boundary_points(const OccupancyGrid& gr
   return boundary_points(graph.grid, free_edge_cells(grid, graph), spacing_m, max_points);
 }
 
+/// Each free-space edge point's free side (`RefineParams::free_side_radius_m`): the unit
+/// direction, in world coordinates, of the free cells within `radius_m` (at least one cell) less
+/// that of the others, off-grid cells counting as not free; zero where they balance.
+inline std::vector<Eigen::Vector2d> free_sides(const OccupancyGrid& grid, const std::vector<Eigen::Vector2d>& points,
+                                               double radius_m) {
+  const int reach = std::max(1, static_cast<int>(std::lround(radius_m / grid.resolution())));
+  const Eigen::Affine2d world_from_pixel = grid.world_from_pixel();
+  const Eigen::Affine2d pixel_from_world = world_from_pixel.inverse();
+  std::vector<Eigen::Vector2d> sides;
+  sides.reserve(points.size());
+  for (const auto& p : points) {
+    const Eigen::Vector2d pixel = pixel_from_world * p;
+    const int col = static_cast<int>(std::floor(pixel.x() + 0.5)), row = static_cast<int>(std::floor(pixel.y() + 0.5));
+    int sx = 0, sy = 0;
+    for (int dy = -reach; dy <= reach; ++dy) {
+      for (int dx = -reach; dx <= reach; ++dx) {
+        const int sign = grid.contains(col + dx, row + dy) && grid.is_free(col + dx, row + dy) ? 1 : -1;
+        sx += sign * dx;
+        sy += sign * dy;
+      }
+    }
+    const Eigen::Vector2d side = world_from_pixel.linear() * Eigen::Vector2d(sx, sy);
+    const double norm = side.norm();
+    sides.push_back(norm > 0.0 ? Eigen::Vector2d(side / norm) : Eigen::Vector2d::Zero());
+  }
+  return sides;
+}
+
 /// Edge points of the area-covered free space.
 inline std::vector<Eigen::Vector2d> area_boundary_points(const AreaGraph& graph, double spacing_m,
                                                          std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
@@ -205,15 +247,7 @@ class BoundaryLookup {
     origin_ = lo - Eigen::Vector2d::Constant(margin_m);
     width_ = static_cast<int>(std::ceil((hi.x() - lo.x() + 2.0 * margin_m) / cell_m)) + 1;
     height_ = static_cast<int>(std::ceil((hi.y() - lo.y() + 2.0 * margin_m) / cell_m)) + 1;
-    nearest_.assign(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), -1);
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-      const auto [x, y] = cell_of(points_[i]);
-      auto& slot = nearest_[index(x, y)];
-      if (slot < 0 || distance2(points_[i], x, y) < distance2(points_[static_cast<std::size_t>(slot)], x, y)) {
-        slot = static_cast<int>(i);
-      }
-    }
-    propagate();
+    nearest_ = nearest_of([](std::size_t) { return true; });
     if (normal_radius_m > 0.0) compute_normals(normal_radius_m, lo, hi);
   }
 
@@ -225,16 +259,63 @@ class BoundaryLookup {
   const Eigen::Vector2d& normal_at(const Eigen::Vector2d* point) const {
     return normals_[static_cast<std::size_t>(point - points_.data())];
   }
-
-  /// The boundary point nearest to p, or nullptr when p is outside the lookup grid.
-  const Eigen::Vector2d* nearest(const Eigen::Vector2d& p) const {
-    const double fx = (p.x() - origin_.x()) / cell_m_, fy = (p.y() - origin_.y()) / cell_m_;
-    if (!(fx >= 0.0 && fy >= 0.0 && fx < width_ && fy < height_)) return nullptr;
-    const int slot = nearest_[index(static_cast<int>(fx), static_cast<int>(fy))];
-    return slot < 0 ? nullptr : &points_[static_cast<std::size_t>(slot)];
+  /// Gives each point its free side (`free_sides`, one per point, in order) and builds the
+  /// lookups of `nearest_facing`: one per quarter of the circle (sides within 67.5° of +x, +y,
+  /// −x, −y; a point without a side in all four).
+  void set_sides(std::vector<Eigen::Vector2d> sides) {
+    if (sides.size() != points_.size()) throw parameter_error("BoundaryLookup::set_sides: one side per point");
+    sides_ = std::move(sides);
+    const double within = std::cos(0.375 * pi);  // 67.5°: quarters overlap near their edges
+    for (int q = 0; q < 4; ++q) {
+      const Eigen::Vector2d centre = quarter_centre(q);
+      facing_[static_cast<std::size_t>(q)] = nearest_of([&](std::size_t i) {
+        return sides_[i].isZero() || sides_[i].dot(centre) >= within;
+      });
+    }
+  }
+  bool has_sides() const { return !sides_.empty(); }
+  /// The free side of a point returned by `nearest` (lookups given sides only).
+  const Eigen::Vector2d& side_at(const Eigen::Vector2d* point) const {
+    return sides_[static_cast<std::size_t>(point - points_.data())];
+  }
+  /// The boundary point nearest to p among those whose free side faces the way `side` does
+  /// (within 112.5°: the quarter of the circle `side` falls in, widened; never the opposite
+  /// face of a wall), or nullptr. A zero `side` or a lookup without sides: `nearest(p)`.
+  const Eigen::Vector2d* nearest_facing(const Eigen::Vector2d& p, const Eigen::Vector2d& side) const {
+    if (sides_.empty() || side.isZero()) return nearest(p);
+    const int q = std::abs(side.x()) >= std::abs(side.y()) ? (side.x() > 0.0 ? 0 : 2) : (side.y() > 0.0 ? 1 : 3);
+    return nearest_in(facing_[static_cast<std::size_t>(q)], p);
   }
 
+  /// The boundary point nearest to p, or nullptr when p is outside the lookup grid.
+  const Eigen::Vector2d* nearest(const Eigen::Vector2d& p) const { return nearest_in(nearest_, p); }
+
  private:
+  const Eigen::Vector2d* nearest_in(const std::vector<int>& cells, const Eigen::Vector2d& p) const {
+    const double fx = (p.x() - origin_.x()) / cell_m_, fy = (p.y() - origin_.y()) / cell_m_;
+    if (!(fx >= 0.0 && fy >= 0.0 && fx < width_ && fy < height_)) return nullptr;
+    const int slot = cells[index(static_cast<int>(fx), static_cast<int>(fy))];
+    return slot < 0 ? nullptr : &points_[static_cast<std::size_t>(slot)];
+  }
+  static Eigen::Vector2d quarter_centre(int q) {
+    return q == 0 ? Eigen::Vector2d(1.0, 0.0) : q == 1 ? Eigen::Vector2d(0.0, 1.0) : q == 2 ? Eigen::Vector2d(-1.0, 0.0) : Eigen::Vector2d(0.0, -1.0);
+  }
+  /// Per cell, the index of the (approximately) nearest of the points `take(i)` accepts: each
+  /// seeds its own cell, then `propagate`.
+  template <class Take>
+  std::vector<int> nearest_of(Take take) const {
+    std::vector<int> cells(static_cast<std::size_t>(width_) * static_cast<std::size_t>(height_), -1);
+    for (std::size_t i = 0; i < points_.size(); ++i) {
+      if (!take(i)) continue;
+      const auto [x, y] = cell_of(points_[i]);
+      auto& slot = cells[index(x, y)];
+      if (slot < 0 || distance2(points_[i], x, y) < distance2(points_[static_cast<std::size_t>(slot)], x, y)) {
+        slot = static_cast<int>(i);
+      }
+    }
+    propagate(cells);
+    return cells;
+  }
   std::pair<int, int> cell_of(const Eigen::Vector2d& p) const {
     return {std::clamp(static_cast<int>((p.x() - origin_.x()) / cell_m_), 0, width_ - 1),
             std::clamp(static_cast<int>((p.y() - origin_.y()) / cell_m_), 0, height_ - 1)};
@@ -258,11 +339,11 @@ class BoundaryLookup {
   }
   /// Two raster passes, down then up; in each, a cell looks at its neighbours already visited
   /// (left, above-left, above, above-right going down), then a sweep the other way along the row.
-  void propagate() {
+  void propagate(std::vector<int>& cells) const {
     const int W = width_, H = height_;
     std::vector<double> centres_x(static_cast<std::size_t>(W)), row_best(static_cast<std::size_t>(W));
     for (int x = 0; x < W; ++x) centres_x[static_cast<std::size_t>(x)] = centre_x(x);
-    auto row = [&](int y) { return nearest_.data() + index(0, y); };
+    auto row = [&](int y) { return cells.data() + index(0, y); };
     for (int y = 0; y < H; ++y) sweep_row<1>(row(y), y > 0 ? row(y - 1) : nullptr, centre_y(y), centres_x, row_best);
     for (int y = H - 1; y >= 0; --y) sweep_row<-1>(row(y), y + 1 < H ? row(y + 1) : nullptr, centre_y(y), centres_x, row_best);
   }
@@ -350,6 +431,8 @@ class BoundaryLookup {
   std::vector<Eigen::Vector2d> points_;
   std::vector<int> nearest_;
   std::vector<Eigen::Vector2d> normals_;  ///< per point; empty when built without normals
+  std::vector<Eigen::Vector2d> sides_;    ///< per point; empty unless `set_sides`
+  std::array<std::vector<int>, 4> facing_;  ///< `nearest_` over the points facing each quarter
 };
 
 /// Share of `source_points` that land within `distance_m` of a destination boundary point under
@@ -370,11 +453,19 @@ inline double boundary_inlier_fraction(const std::vector<Eigen::Vector2d>& sourc
 /// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept; the scale fitted
 /// too with `params.estimate_scale`) that best lays `source_points` onto the destination
 /// boundary. Point-to-line steps with `params.point_to_line` and a lookup with normals (rigid
-/// only), else point-to-point. Returns `initial` when too few points match.
+/// only), else point-to-point. With `source_sides` (the points' free sides, `free_sides`; empty:
+/// none) and a lookup with sides, `params.same_side_only` pairs each point with the nearest wall
+/// facing the same way.
+/// Returns `initial` when too few points match.
 inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
-                              const Similarity2& initial, const RefineParams& params) {
+                              const Similarity2& initial, const RefineParams& params,
+                              const std::vector<Eigen::Vector2d>* source_sides = nullptr) {
   Similarity2 T = initial;
   if (dest.empty() || source_points.size() < 3) return T;
+  const bool same_side = params.same_side_only && source_sides && !source_sides->empty() && dest.has_sides();
+  if (same_side && source_sides->size() != source_points.size()) {
+    throw parameter_error("refine_icp: one free side per source point");
+  }
   struct Match {
     double distance2;
     Eigen::Vector2d from;  // F·scale·x, the source point before rotation
@@ -389,10 +480,11 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
     for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
       matches.clear();
       const Eigen::Matrix2d rotation = Eigen::Rotation2Dd(T.rotation).toRotationMatrix();
-      for (const auto& x : source_points) {
-        const Eigen::Vector2d from = shape * x;
+      const Eigen::Matrix2d side_turn = rotation * shape.linear();  // scale does not change a side's direction
+      for (std::size_t i = 0; i < source_points.size(); ++i) {
+        const Eigen::Vector2d from = shape * source_points[i];
         const Eigen::Vector2d y = rotation * from + T.translation;
-        const Eigen::Vector2d* d = dest.nearest(y);
+        const Eigen::Vector2d* d = same_side ? dest.nearest_facing(y, side_turn * (*source_sides)[i]) : dest.nearest(y);
         if (!d) continue;
         const double d2 = (*d - y).squaredNorm();
         if (d2 <= gate * gate) matches.push_back({d2, from, *d, point_to_line ? dest.normal_at(d) : Eigen::Vector2d::Zero()});

@@ -48,7 +48,8 @@ double sweep_scale(const OccupancyGrid& source, const AreaGraph& graph, const Ma
   const int steps = static_cast<int>(std::floor(p.scale.sweep_range / p.scale.sweep_step + 1e-9));
   for (int k = -steps; k <= steps; ++k) {
     const double factor = 1.0 + k * p.scale.sweep_step;
-    const Similarity2 moved = refine_icp(edges.source_points, edges.dest_lookup, scaled_about(T, factor, centre), rigid);
+    const Similarity2 moved = refine_icp(edges.source_points, edges.dest_lookup, scaled_about(T, factor, centre), rigid,
+                                         &edges.source_sides);
     const double agreement = measure_evidence(graph, dest_graph, source_raster, dest_raster, edges, moved,
                                               p.wall_inlier_distance_m, p.passage_distance_m, p.agreement_iou_weight)
                                  .agreement;

@@ -206,6 +206,7 @@ struct WholeMapSelection {
     if (params.refine) {
       const RefineParams refinement = detail::finalist_refinement(params);
       const std::vector<Eigen::Vector2d>* points = &edge;
+      const std::vector<Eigen::Vector2d>* sides = &in.edges.source_sides;
       const BoundaryLookup* lookup = &dest_edge;
       std::vector<Eigen::Vector2d> area_points;
       BoundaryLookup area_lookup;
@@ -216,10 +217,11 @@ struct WholeMapSelection {
                                      params.refinement.lookup_cell_m, params.refinement.gates_m.front(),
                                      params.refinement.point_to_line ? params.refinement.normal_radius_m : 0.0);
         points = &area_points;
+        sides = nullptr;
         lookup = &area_lookup;
       }
       detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
-        finalists[i].T = refine_icp(*points, *lookup, finalists[i].T, refinement);
+        finalists[i].T = refine_icp(*points, *lookup, finalists[i].T, refinement, sides);
       });
       statistics.refined = finalists.size();
     }
