@@ -420,7 +420,7 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
   CHECK(json.out.find('\n') == json.out.size() - 1);
   for (const char* key : {"\"placed\": true", "\"pixel_transform\"", "\"rotation_deg\"", "\"translation_m\"", "\"scale\"",
                           "\"reflected\"", "\"residual_m\"", "\"edges\"", "\"from\"", "\"to\"", "\"p_correct\"", "\"used\": true",
-                          "\"timings\"", "\"prepare_s\"", "\"merge_s\""}) {
+                          "\"timings\"", "\"prepare_s\"", "\"refine_s\"", "\"merge_s\""}) {
     CHECK_MESSAGE(json.out.find(key) != std::string::npos, key);
   }
   const areamatch::OccupancyGrid merged = areamatch::load_map(dir + "/merged.yaml");
@@ -436,6 +436,9 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
 
   const Run one_thread = run("merge " + maps + " --json --threads 1", false);
   CHECK(one_thread.out.substr(0, one_thread.out.find("\"timings\"")) == json.out.substr(0, json.out.find("\"timings\"")));
+  const Run as_matched = run("merge " + maps + " --json --no-same-side", false);
+  CHECK(as_matched.status == 0);
+  CHECK(as_matched.out.find("\"refine_s\": 0,") != std::string::npos);
   const Run text = run("merge " + maps + " --reference " + dir + "/a/robot.yaml");
   CHECK(text.status == 0);
   CHECK(text.out.find("placed 2 of 2 maps in the frame of " + dir + "/a/robot.yaml") != std::string::npos);

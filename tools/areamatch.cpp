@@ -505,13 +505,15 @@ const char* kMergeHelp =
     "                       poses (default 1.0)\n"
     "  --until-connected    match a pair only while its maps are not yet joined (fewer matches, no loop\n"
     "                       checks; default: every pair)\n"
+    "  --no-same-side       use the accepted matches' transforms as they are (default: each refined by\n"
+    "                       ICP that pairs walls only with walls facing the same way)\n"
     "  --threads N          match N pairs at once (default 2; 0: one per core); same results for any N\n"
     "  --min-agreement A    accept a match when the maps agree at least A (default 0.835)\n"
     "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
     "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
 
 int run_merge(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"json", "allow-reflection", "until-connected", "help"},
+  const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "help"},
                   {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
                    "min-p-correct", "threads"});
   if (args.flag("help")) {
@@ -544,6 +546,7 @@ int run_merge(const std::vector<std::string>& tokens) {
   }
   if (const auto residual = args.number("max-residual", true)) merge_params.max_residual_m = *residual;
   if (args.flag("until-connected")) merge_params.strategy = areamatch::MergeStrategy::until_connected;
+  merge_params.refine_same_side = !args.flag("no-same-side");
   merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
   areamatch::Matcher<> matcher;
   if (const auto door = args.number("door-width", true)) matcher.segmenter.params.with_door_width(*door);

@@ -50,14 +50,16 @@ MergeResult.timings = _from_dict("timings", "Seconds per step (dict).")
 
 
 def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None, min_p_correct=None,
-          resolution=None, wall_share=0.5, max_residual=1.0, until_connected=False, threads=1, names=None,
-          build_merged_map=True):
+          resolution=None, wall_share=0.5, max_residual=1.0, until_connected=False, same_side=True, threads=1,
+          names=None, build_merged_map=True):
     """Places several maps of one building in the frame of maps[reference] and fuses them.
 
     As `areamatch merge`: every pair matched (or only until connected), the poses fitted to the
     accepted matches, contradicted matches dropped, unplaced maps reported with a reason.
     `maps`: Map objects, prepared here `threads` at a time (maps prepared already: Matcher.merge).
-    Returns a MergeResult; `names` label the maps in its JSON (default "map i").
+    `same_side`: refine each accepted match by ICP that pairs walls only with walls facing the
+    same way (MergeParams::refine_same_side). Returns a MergeResult; `names` label the maps in its
+    JSON (default "map i").
     """
     maps = list(maps)
     if not all(isinstance(m, Map) for m in maps):
@@ -66,7 +68,8 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
                       min_p_correct=min_p_correct)
     maps = matcher.prepare_all(maps, threads=threads)
     return matcher.merge(maps, reference=reference, resolution=resolution, wall_share=wall_share,
-                         max_residual=max_residual, until_connected=until_connected, threads=threads,
+                         max_residual=max_residual, until_connected=until_connected, same_side=same_side,
+                         threads=threads,
                          names=list(names or []), build_merged_map=build_merged_map)
 
 

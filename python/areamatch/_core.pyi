@@ -143,5 +143,5 @@ class Matcher:
     @overload
     def match(self, source: Map, dest: Map) -> Result: ...
     def merge(self, maps: Sequence[PreparedMap], *, reference: Optional[int] = ..., resolution: Optional[float] = ...,
-              wall_share: float = ..., max_residual: float = ..., until_connected: bool = ..., threads: int = ...,
+              wall_share: float = ..., max_residual: float = ..., until_connected: bool = ..., same_side: bool = ..., threads: int = ...,
               names: Sequence[str] = ..., build_merged_map: bool = ...) -> MergeResult: ...

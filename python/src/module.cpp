@@ -231,7 +231,7 @@ MatchRun match_prepared(const PyMatcher& m, const am::OccupancyGrid* source_grid
 
 MergeRun run_merge(const DefaultMatcher& matcher, std::vector<Prepared> maps, std::optional<std::size_t> reference,
                    std::optional<double> resolution, double wall_share, double max_residual, bool until_connected,
-                   unsigned threads, std::vector<std::string> names, bool build_merged_map) {
+                   bool same_side, unsigned threads, std::vector<std::string> names, bool build_merged_map) {
   am::MergeParams params;
   params.reference = reference.value_or(0);
   if (resolution) {
@@ -241,6 +241,7 @@ MergeRun run_merge(const DefaultMatcher& matcher, std::vector<Prepared> maps, st
   params.fuse.wall_share = wall_share;  // checked by merge_maps (FuseParams::validate)
   params.max_residual_m = max_residual;
   params.strategy = until_connected ? am::MergeStrategy::until_connected : am::MergeStrategy::all_pairs;
+  params.refine_same_side = same_side;
   params.threads = threads;
   params.names = names;
   params.build_merged_map = build_merged_map;
@@ -531,14 +532,14 @@ PYBIND11_MODULE(_core, m) {
       .def(
           "merge",
           [](const PyMatcher& p, std::vector<Prepared> maps, std::optional<std::size_t> reference, std::optional<double> resolution,
-             double wall_share, double max_residual, bool until_connected, unsigned threads, std::vector<std::string> names,
-             bool build_merged_map) {
+             double wall_share, double max_residual, bool until_connected, bool same_side, unsigned threads,
+             std::vector<std::string> names, bool build_merged_map) {
             return run_merge(p.matcher, std::move(maps), reference, resolution, wall_share, max_residual, until_connected,
-                             threads, std::move(names), build_merged_map);
+                             same_side, threads, std::move(names), build_merged_map);
           },
           py::arg("maps"), py::kw_only(), py::arg("reference") = py::none(), py::arg("resolution") = py::none(),
           py::arg("wall_share") = 0.5, py::arg("max_residual") = 1.0, py::arg("until_connected") = false,
-          py::arg("threads") = 1, py::arg("names") = std::vector<std::string>{}, py::arg("build_merged_map") = true,
+          py::arg("same_side") = true, py::arg("threads") = 1, py::arg("names") = std::vector<std::string>{}, py::arg("build_merged_map") = true,
           release_gil(), "Places prepared maps in the frame of maps[reference] and fuses them (as `areamatch merge`).");
 
   py::class_<MergeRun>(m, "MergeResult", "Several maps placed in one frame, with the merged map.")
