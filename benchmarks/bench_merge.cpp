@@ -6,7 +6,7 @@
 //   merge/synthetic/15/threads:2  the same, pairs matched on two threads (MergeParams::threads)
 //   merge/F5             the 14 hand-held scans of ../shared/handheld and the F5 layout (when
 //                        present), the layout as reference, door width 1.0 m
-// Counters: matching_ms, fit_ms, fuse_ms (per merge) and prepare_ms (all N preparations, once:
+// Counters: matching_ms, refine_ms (MergeParams::refine_same_side), fit_ms, fuse_ms (per merge) and prepare_ms (all N preparations, once:
 // merging N maps needs N of them, done before the timed loop).
 //   build/benchmarks/areamatch_bench --benchmark_filter='^merge/' --benchmark_out=merge.json --benchmark_out_format=json
 #include "synthetic_cases.hpp"
@@ -43,6 +43,7 @@ void run_merge(benchmark::State& state, const areamatch::Matcher<>& matcher, con
     const areamatch::MergeResult result = areamatch::merge_maps(matcher, maps, params);
     benchmark::DoNotOptimize(result.merged.cells().data());
     sum.matching_s += result.timings.matching_s;
+    sum.refine_s += result.timings.refine_s;
     sum.fit_s += result.timings.fit_s;
     sum.fuse_s += result.timings.fuse_s;
     placed = 0;
@@ -50,6 +51,7 @@ void run_merge(benchmark::State& state, const areamatch::Matcher<>& matcher, con
   }
   const double n = static_cast<double>(state.iterations());
   state.counters["matching_ms"] = 1000.0 * sum.matching_s / n;
+  state.counters["refine_ms"] = 1000.0 * sum.refine_s / n;
   state.counters["fit_ms"] = 1000.0 * sum.fit_s / n;
   state.counters["fuse_ms"] = 1000.0 * sum.fuse_s / n;
   state.counters["prepare_ms"] = 1000.0 * prepare_s;

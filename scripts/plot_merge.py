@@ -22,8 +22,8 @@ def main():
         name = b.get("run_name", b["name"])
         if not name.startswith("merge/synthetic/") or "threads" in name:
             if name.startswith("merge/"):
-                print("%-20s %8.1f ms (prepare %.0f ms, matching %.0f, fit %.1f, fuse %.0f)" % (
-                    name, b["real_time"], b["prepare_ms"], b["matching_ms"], b["fit_ms"], b["fuse_ms"]))
+                print("%-20s %8.1f ms (prepare %.0f ms, matching %.0f, refine %.0f, fit %.1f, fuse %.0f)" % (
+                    name, b["real_time"], b["prepare_ms"], b["matching_ms"], b.get("refine_ms", 0.0), b["fit_ms"], b["fuse_ms"]))
             continue
         n = int(re.match(r"merge/synthetic/(\d+)", name).group(1))
         rows[n] = b
@@ -31,10 +31,11 @@ def main():
         print("plot_merge.py: no merge/synthetic/<N> benchmarks in " + sys.argv[1], file=sys.stderr)
         return 2
     ns = sorted(rows)
-    print("%4s %10s %10s %8s %8s %10s" % ("N", "merge_ms", "matching", "fit", "fuse", "prepare"))
+    print("%4s %10s %10s %8s %8s %8s %10s" % ("N", "merge_ms", "matching", "refine", "fit", "fuse", "prepare"))
     for n in ns:
         b = rows[n]
-        print("%4d %10.1f %10.1f %8.2f %8.1f %10.1f" % (n, b["real_time"], b["matching_ms"], b["fit_ms"], b["fuse_ms"], b["prepare_ms"]))
+        print("%4d %10.1f %10.1f %8.1f %8.2f %8.1f %10.1f" % (n, b["real_time"], b["matching_ms"], b.get("refine_ms", 0.0), b["fit_ms"],
+                                                          b["fuse_ms"], b["prepare_ms"]))
     width, height, left, bottom, top, right = 560, 360, 70, 50, 30, 150
     x_max = max(ns)
     y_max = max(rows[n]["real_time"] + rows[n]["prepare_ms"] for n in ns) * 1.1
@@ -56,7 +57,8 @@ def main():
     out.append('<text x="%d" y="%d" text-anchor="middle">maps merged (N)</text>' % ((left + width - right) / 2, height - 12))
     out.append('<text x="16" y="%d" transform="rotate(-90 16 %d)" text-anchor="middle">ms</text>' % ((top + height - bottom) / 2, (top + height - bottom) / 2))
     series = [("merge (all)", lambda b: b["real_time"], "#c0392b"), ("matching", lambda b: b["matching_ms"], "#2874a6"),
-              ("fusion", lambda b: b["fuse_ms"], "#27ae60"), ("N preparations", lambda b: b["prepare_ms"], "#7f8c8d")]
+              ("refinement", lambda b: b.get("refine_ms", 0.0), "#8e44ad"), ("fusion", lambda b: b["fuse_ms"], "#27ae60"),
+              ("N preparations", lambda b: b["prepare_ms"], "#7f8c8d")]
     for i, (label, value, colour) in enumerate(series):
         points = " ".join("%.1f,%.1f" % (X(n), Y(value(rows[n]))) for n in ns)
         out.append('<polyline points="%s" fill="none" stroke="%s" stroke-width="2"/>' % (points, colour))

@@ -32,7 +32,6 @@
 #include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
-#include "match/map_data.hpp"
 #include "match/params.hpp"
 #include "match/refine.hpp"
 #include "match/result.hpp"
@@ -191,20 +190,21 @@ inline double free_area_m2(const OccupancyGrid& grid) {
 }
 
 /// One map's free-space edge with the side each point faces (`free_sides`), as the matcher's
-/// parameters sample it: the points that move and a lookup with normals and sides to land on.
+/// parameters sample it: the points that move and a lookup with normals and sides to land on,
+/// reaching `reach_m` beyond the edge (the refinement's gate: no pair is ever further).
 struct FacingEdges {
   std::vector<Eigen::Vector2d> points;
   std::vector<Eigen::Vector2d> sides;
   BoundaryLookup lookup;
 };
 
-inline FacingEdges facing_edges(const OccupancyGrid& grid, const AreaGraph& graph, const MatcherParams& params) {
+inline FacingEdges facing_edges(const OccupancyGrid& grid, const AreaGraph& graph, const MatcherParams& params, double reach_m) {
   const RefineParams& r = params.refinement;
   const std::vector<std::size_t> cells = free_edge_cells(grid, graph);
   FacingEdges e;
   e.points = boundary_points(graph.grid, cells, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
   e.sides = free_sides(grid, e.points, r.free_side_radius_m);
-  e.lookup = BoundaryLookup(boundary_points(graph.grid, cells, 0.5 * r.lookup_cell_m), r.lookup_cell_m, lookup_margin(params),
+  e.lookup = BoundaryLookup(boundary_points(graph.grid, cells, 0.5 * r.lookup_cell_m), r.lookup_cell_m, reach_m,
                             r.point_to_line ? r.normal_radius_m : 0.0);
   e.lookup.set_sides(free_sides(grid, e.lookup.points(), r.free_side_radius_m));
   return e;
@@ -219,14 +219,16 @@ void refine_edges_same_side(const Maps& maps, const MatcherParams& matcher_param
   for (std::size_t e = 0; e < edges.size(); ++e) {
     if (trusted[e]) needed[edges[e].source] = needed[edges[e].dest] = 1;
   }
-  std::vector<FacingEdges> facing(maps.size());
-  for_each_index(maps.size(), threads, [&](std::size_t m) {
-    if (needed[m] && !maps[m].graph().areas.empty()) facing[m] = facing_edges(maps[m].grid(), maps[m].graph(), matcher_params);
-  });
   RefineParams refinement = matcher_params.refinement;
   refinement.same_side_only = true;
   refinement.estimate_scale = false;
   refinement.gates_m = {refinement.gates_m.back()};  // the match is near: only the last gate's pairs
+  std::vector<FacingEdges> facing(maps.size());
+  for_each_index(maps.size(), threads, [&](std::size_t m) {
+    if (needed[m] && !maps[m].graph().areas.empty()) {
+      facing[m] = facing_edges(maps[m].grid(), maps[m].graph(), matcher_params, refinement.gates_m.front());
+    }
+  });
   for_each_index(edges.size(), threads, [&](std::size_t e) {
     MergeEdge& edge = edges[e];
     if (!trusted[e]) return;
