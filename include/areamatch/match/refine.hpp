@@ -7,9 +7,10 @@
 /// lacks do not pull the result. Each step minimises the distances to the destination's walls
 /// along their normals (point-to-line), so the walls across a corridor pin a map sliding along
 /// it; point-to-point steps, which pull every point towards its nearest boundary point, stop
-/// short there. A point is paired with the nearest wall that faces free space the same way: the
-/// two faces of a wall between a room one map entered and one only the other did look opposite
-/// ways, a wall's thickness apart, and would pull the map across it.
+/// short there. With `RefineParams::same_side_only` (merging's refinement) a point is paired
+/// with the nearest wall that faces free space the same way: the two faces of a wall between a
+/// room one map entered and one only the other did look opposite ways, a wall's thickness apart,
+/// and would pull the map across it.
 
 #include "../area_graph.hpp"
 #include "../error.hpp"
@@ -455,8 +456,7 @@ inline double boundary_inlier_fraction(const std::vector<Eigen::Vector2d>& sourc
 /// boundary. Point-to-line steps with `params.point_to_line` and a lookup with normals (rigid
 /// only), else point-to-point. With `source_sides` (the points' free sides, `free_sides`; empty:
 /// none) and a lookup with sides, `params.same_side_only` pairs each point with the nearest wall
-/// facing the same way.
-/// Returns `initial` when too few points match.
+/// facing the same way. Returns `initial` when too few points match.
 inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
                               const Similarity2& initial, const RefineParams& params,
                               const std::vector<Eigen::Vector2d>* source_sides = nullptr) {
