@@ -7,7 +7,8 @@
 //   pair/<pair>    the whole pair: segment both maps and match (shared pairs: load the files too)
 //   onto_prepared/<pair>  the source's grid onto the destination prepared beforehand
 //                  (Matcher::prepare): segment the source and match, as when localising robot
-//                  maps against a floor plan
+//                  maps against a floor plan; counters: segment_ms, prepare_ms (the source's match
+//                  data), hypotheses_ms (with pairs and clustering), selection_ms, answer_ms (the rest)
 // Pairs are prepared on first use, so a --benchmark_filter run pays only for what it selects.
 //   build/benchmarks/areamatch_bench --benchmark_filter='^(match|pair|onto_prepared)/' --benchmark_out=matching.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
@@ -84,10 +85,26 @@ void register_pair(const std::string& name, std::function<Prepared()> make,
     auto matcher = matcher_for(p.options);
     if (p.options.source_door_width_m) matcher.segmenter.params.with_door_width(*p.options.source_door_width_m);
     const auto dest = matcher.prepare(p.dest, p.dest_graph);
+    areamatch::MatchTimings sum;
     for (auto _ : state) {
       const auto result = matcher.match(p.source, dest);
       benchmark::DoNotOptimize(result.score);
+      const areamatch::MatchTimings& t = result.timings;
+      sum.segment_source_s += t.segment_source_s;
+      sum.prepare_s += t.prepare_s;
+      sum.hypotheses_s += t.features_s + t.hypotheses_s + t.clustering_s;
+      sum.selection_s += t.selection_s;
+      sum.match_s += t.match_s;
     }
+    // Where a robot map's time onto a prepared layout goes (ms per match): segmenting it,
+    // building its match data, pairs + hypotheses + clustering, selection, and the rest of the
+    // matching stage (evidence, margins, room correspondences, the decision).
+    const double ms = 1000.0 / static_cast<double>(state.iterations());
+    state.counters["segment_ms"] = ms * sum.segment_source_s;
+    state.counters["prepare_ms"] = ms * sum.prepare_s;
+    state.counters["hypotheses_ms"] = ms * sum.hypotheses_s;
+    state.counters["selection_ms"] = ms * sum.selection_s;
+    state.counters["answer_ms"] = ms * (sum.match_s - sum.prepare_s - sum.hypotheses_s - sum.selection_s);
   })->Unit(benchmark::kMillisecond);
 }
 
