@@ -149,6 +149,20 @@ class Matcher {
     detail::MapDataKey key_;
   };
 
+  /// A prepared map's free-space edge points with their free sides and a lookup with normals and
+  /// sides reaching `reach_m`, from the edge it already holds: what merging's same-side
+  /// refinement (`MergeParams::refine_same_side`) needs of each map. Empty for a map without areas.
+  detail::FacingEdges facing_edges(const PreparedMap& m, double reach_m) const {
+    check_prepared(m, "merged");
+    detail::FacingEdges e;
+    if (m.graph_.areas.empty()) return e;
+    const RefineParams& r = params.refinement;
+    e.points = m.data_.edge_points;
+    e.sides = m.data_.edge_sides.empty() ? detail::free_sides(m.grid_, e.points, r.free_side_radius_m) : m.data_.edge_sides;
+    e.lookup = detail::edge_lookup(m.grid_, m.graph_.grid, m.data_.free_edge, r, reach_m, true, true);
+    return e;
+  }
+
   /// Segments `grid` with `segmenter` and prepares it for matching.
   PreparedMap prepare(const OccupancyGrid& grid) const { return prepare(grid, segmenter.segment(grid)); }
 

@@ -32,6 +32,7 @@
 #include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
+#include "match/map_data.hpp"
 #include "match/params.hpp"
 #include "match/refine.hpp"
 #include "match/result.hpp"
@@ -189,45 +190,23 @@ inline double free_area_m2(const OccupancyGrid& grid) {
   return static_cast<double>(grid.count().free) * grid.resolution() * grid.resolution();
 }
 
-/// One map's free-space edge with the side each point faces (`free_sides`), as the matcher's
-/// parameters sample it: the points that move and a lookup with normals and sides to land on,
-/// reaching `reach_m` beyond the edge (the refinement's gate: no pair is ever further).
-struct FacingEdges {
-  std::vector<Eigen::Vector2d> points;
-  std::vector<Eigen::Vector2d> sides;
-  BoundaryLookup lookup;
-};
-
-inline FacingEdges facing_edges(const OccupancyGrid& grid, const AreaGraph& graph, const MatcherParams& params, double reach_m) {
-  const RefineParams& r = params.refinement;
-  const std::vector<std::size_t> cells = free_edge_cells(grid, graph);
-  FacingEdges e;
-  e.points = boundary_points(graph.grid, cells, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
-  e.sides = free_sides(grid, e.points, r.free_side_radius_m);
-  e.lookup = BoundaryLookup(boundary_points(graph.grid, cells, 0.5 * r.lookup_cell_m), r.lookup_cell_m, reach_m,
-                            r.point_to_line ? r.normal_radius_m : 0.0);
-  e.lookup.set_sides(free_sides(grid, e.lookup.points(), r.free_side_radius_m));
-  return e;
-}
-
 /// Refines the accepted, trusted edges' transforms (`MergeParams::refine_same_side`); each map's
-/// edges are built once, and only for maps such an edge joins.
-template <class Maps>
-void refine_edges_same_side(const Maps& maps, const MatcherParams& matcher_params, std::vector<MergeEdge>& edges,
+/// facing edges are built once (`Matcher::facing_edges`, reaching the refinement's gate: no pair
+/// is ever further), and only for maps such an edge joins.
+template <class MatcherType, class Maps>
+void refine_edges_same_side(const MatcherType& matcher, const Maps& maps, std::vector<MergeEdge>& edges,
                             const std::vector<char>& trusted, unsigned threads) {
   std::vector<char> needed(maps.size(), 0);
   for (std::size_t e = 0; e < edges.size(); ++e) {
     if (trusted[e]) needed[edges[e].source] = needed[edges[e].dest] = 1;
   }
-  RefineParams refinement = matcher_params.refinement;
+  RefineParams refinement = matcher.params.refinement;
   refinement.same_side_only = true;
   refinement.estimate_scale = false;
   refinement.gates_m = {refinement.gates_m.back()};  // the match is near: only the last gate's pairs
   std::vector<FacingEdges> facing(maps.size());
   for_each_index(maps.size(), threads, [&](std::size_t m) {
-    if (needed[m] && !maps[m].graph().areas.empty()) {
-      facing[m] = facing_edges(maps[m].grid(), maps[m].graph(), matcher_params, refinement.gates_m.front());
-    }
+    if (needed[m]) facing[m] = matcher.facing_edges(maps[m], refinement.gates_m.front());
   });
   for_each_index(edges.size(), threads, [&](std::size_t e) {
     MergeEdge& edge = edges[e];
@@ -323,7 +302,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   if (refine) {
     std::vector<char> trusted(result.edges.size(), 0);
     for (std::size_t e = 0; e < result.edges.size(); ++e) trusted[e] = result.edges[e].match.ok && !distrusted[e];
-    detail::refine_edges_same_side(maps, matcher.params, result.edges, trusted, params.threads);
+    detail::refine_edges_same_side(matcher, maps, result.edges, trusted, params.threads);
   }
   const auto refined = std::chrono::steady_clock::now();
 

@@ -84,6 +84,25 @@ inline MapDataKey map_data_key(const MatcherParams& params, bool normals) {
 }
 
 /// What matching builds from one map alone, with the Features policy `features`.
+/// The dense lookup over a map's free-space edge cells (points every half lookup cell) reaching
+/// `margin_m`: with normals for point-to-line ICP onto it when `normals`, and with each point's
+/// free side (`same_side_only` ICP onto it) when `sides`.
+inline BoundaryLookup edge_lookup(const OccupancyGrid& grid, const GridInfo& g, const std::vector<std::size_t>& free_edge,
+                                  const RefineParams& r, double margin_m, bool normals, bool sides) {
+  BoundaryLookup lookup(boundary_points(g, free_edge, 0.5 * r.lookup_cell_m), r.lookup_cell_m, margin_m,
+                        normals && r.point_to_line ? r.normal_radius_m : 0.0);
+  if (sides) lookup.set_sides(free_sides(grid, lookup.points(), r.free_side_radius_m));
+  return lookup;
+}
+
+/// A map's free-space edge points with the side each faces, and a lookup with normals and sides
+/// to land on: what `same_side_only` ICP reads (merging's refinement builds it from prepared maps).
+struct FacingEdges {
+  std::vector<Eigen::Vector2d> points;
+  std::vector<Eigen::Vector2d> sides;
+  BoundaryLookup lookup;
+};
+
 template <class Features>
 auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Features& features,
                     const MatcherParams& params, bool normals) {
@@ -96,12 +115,9 @@ auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Fea
   d.free_edge = free_edge_cells(grid, graph);  // found once: thinned for the points, the lookup, the rooms' walls
   d.edge_points = boundary_points(graph.grid, d.free_edge, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
   d.walls = without_frontiers(grid, d.edge_points);
-  d.lookup = BoundaryLookup(boundary_points(graph.grid, d.free_edge, 0.5 * r.lookup_cell_m), r.lookup_cell_m,
-                            lookup_margin(params), normals && r.point_to_line ? r.normal_radius_m : 0.0);
-  if (r.same_side_only) {  // which way each wall faces, so that ICP does not pair a wall's two faces
-    d.edge_sides = free_sides(grid, d.edge_points, r.free_side_radius_m);
-    if (normals) d.lookup.set_sides(free_sides(grid, d.lookup.points(), r.free_side_radius_m));
-  }
+  // With same_side_only: which way each wall faces, so that ICP does not pair a wall's two faces.
+  d.lookup = edge_lookup(grid, graph.grid, d.free_edge, r, lookup_margin(params), normals, normals && r.same_side_only);
+  if (r.same_side_only) d.edge_sides = free_sides(grid, d.edge_points, r.free_side_radius_m);
   d.occupied = occupied_walls(grid, graph.grid, params.occupied_point_spacing_m, r.lookup_cell_m, params.occupied_wall_distance_m,
                               params.occupied_wall_context_m);
   return d;
