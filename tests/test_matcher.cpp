@@ -510,7 +510,19 @@ TEST_CASE("pose clustering: its binned leader search gives exactly a linear scan
       hypotheses.push_back(h);
     }
   }
-  for (const auto& tolerances : {std::pair{3.0 * pi / 180.0, 1.0}, std::pair{0.05, 0.3}, std::pair{2.5, 4.0}}) {
+  // Poses exactly on bin edges and tolerances apart (multiples of 0.5 m and of 3°, ±π).
+  for (int k = -4; k <= 4; ++k) {
+    for (double degrees : {-180.0, -3.0, 0.0, 3.0, 6.0, 180.0}) {
+      Hypothesis h;
+      h.T_dest_source.rotation = degrees * pi / 180.0;
+      h.T_dest_source.translation = Eigen::Vector2d(0.5 * k, -0.5 * (k % 3));
+      h.area_overlap = 0.5 + 0.05 * ((k + 4) % 3);
+      h.pair_cost = 0.01 * (k + 4) + degrees / 1000.0;
+      hypotheses.push_back(h);
+    }
+  }
+  for (const auto& tolerances : {std::pair{3.0 * pi / 180.0, 1.0}, std::pair{0.05, 0.3}, std::pair{2.5, 4.0},
+                                 std::pair{3.0 * pi / 180.0, 0.5}, std::pair{4.0, 0.25}}) {
     const double rotation = tolerances.first, translation = tolerances.second;  // (lambdas below capture them)
     PoseClusterer clusterer;
     clusterer.params.rotation_rad = rotation;

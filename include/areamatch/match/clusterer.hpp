@@ -23,9 +23,11 @@
 #include "hypotheses.hpp"
 
 #include <algorithm>
-#include <map>
+#include <cstdint>
+#include <unordered_map>
 #include <tuple>
 #include <cmath>
+#include <limits>
 #include <numeric>
 #include <type_traits>
 #include <utility>
@@ -189,26 +191,51 @@ struct PoseClusterer {
     detail::require_positive(params.translation_m, "PoseClusterer::Params::translation_m");
     const std::vector<int> order = detail::by_overlap(hypotheses);
     std::vector<Cluster> clusters;
-    // Leaders indexed by (mirror side, rotation bin, translation bins): a hypothesis compares only
-    // with leaders in the neighbouring bins, so tens of thousands of hypotheses (large buildings,
-    // all walls axis-aligned) cluster in linear time. Bins are at least the tolerances wide, so
-    // no match is missed; among several matches the earliest cluster wins, as in a linear scan.
-    const int bins = std::max(1, static_cast<int>(2.0 * pi / params.rotation_rad));
-    auto rotation_bin = [&](double rotation) {
-      return std::min(bins - 1, static_cast<int>((wrap_angle(rotation) + pi) / (2.0 * pi) * bins));
+    // Leaders indexed by (mirror side, rotation bin, translation bins), each bin twice its
+    // tolerance wide: a leader within the tolerances lies in the hypothesis's own bin or, along
+    // each axis, in the neighbour on the side the hypothesis is near — at most 2 × 2 × 2 bins to
+    // look in. Looking in a bin needlessly costs time, never a different answer, so the edges are
+    // judged with some slack. Tens of thousands of hypotheses (large buildings, all walls
+    // axis-aligned) cluster in linear time; among several matches the earliest cluster wins, as
+    // in a linear scan.
+    struct Axis {
+      long long bin;
+      int below, above;  // the neighbours to look in: −1 or 0, 0 or 1
     };
-    auto translation_bin = [&](double t) { return static_cast<long long>(std::floor(t / params.translation_m)); };
+    auto axis = [](double value, double width, double tolerance, double upper_limit) {
+      const double cell = std::min(std::floor(value / width), upper_limit);
+      const double lower = cell * width, upper = lower + width, slack = 1e-9 * width;
+      return Axis{static_cast<long long>(cell), value - tolerance <= lower + slack ? -1 : 0,
+                  value + tolerance >= upper - slack ? 1 : 0};
+    };
+    const int bins = std::max(1, static_cast<int>(pi / params.rotation_rad));
+    const double bin_rad = 2.0 * pi / bins, cell_m = 2.0 * params.translation_m;
+    const double unbounded = std::numeric_limits<double>::infinity();
     using Key = std::tuple<bool, int, long long, long long>;
-    std::map<Key, std::vector<int>> leaders;
+    struct KeyHash {  // the lookup order never reaches the result: each bin's leaders are scanned in full
+      std::size_t operator()(const Key& k) const {
+        std::uint64_t h = static_cast<std::uint64_t>(std::get<0>(k)) * 0x9E3779B97F4A7C15ull;
+        for (const std::uint64_t v : {static_cast<std::uint64_t>(std::get<1>(k)), static_cast<std::uint64_t>(std::get<2>(k)),
+                                      static_cast<std::uint64_t>(std::get<3>(k))}) {
+          h = (h ^ v) * 0xBF58476D1CE4E5B9ull;
+          h ^= h >> 31;
+        }
+        return static_cast<std::size_t>(h);
+      }
+    };
+    std::unordered_map<Key, std::vector<int>, KeyHash> leaders;
     for (int i : order) {
       const Similarity2& T = hypotheses[static_cast<std::size_t>(i)].T_dest_source;
-      const int rb = rotation_bin(T.rotation);
-      const long long xb = translation_bin(T.translation.x()), yb = translation_bin(T.translation.y());
+      // wrap_angle + π lies in (0, 2π]; 2π itself belongs to the last bin.
+      const Axis r = axis(wrap_angle(T.rotation) + pi, bin_rad, params.rotation_rad, bins - 1);
+      const Axis x = axis(T.translation.x(), cell_m, params.translation_m, unbounded);
+      const Axis y = axis(T.translation.y(), cell_m, params.translation_m, unbounded);
+      const int rb = static_cast<int>(r.bin);
       int found = -1;
-      for (int dr = -1; dr <= 1; ++dr) {
-        for (long long dx = -1; dx <= 1; ++dx) {
-          for (long long dy = -1; dy <= 1; ++dy) {
-            const auto it = leaders.find(Key{T.reflected, (rb + dr + bins) % bins, xb + dx, yb + dy});
+      for (int dr = r.below; dr <= r.above; ++dr) {
+        for (int dx = x.below; dx <= x.above; ++dx) {
+          for (int dy = y.below; dy <= y.above; ++dy) {
+            const auto it = leaders.find(Key{T.reflected, (rb + dr + bins) % bins, x.bin + dx, y.bin + dy});
             if (it == leaders.end()) continue;
             for (int c : it->second) {
               const Similarity2& L =
@@ -222,7 +249,7 @@ struct PoseClusterer {
         }
       }
       if (found < 0) {
-        leaders[Key{T.reflected, rb, xb, yb}].push_back(static_cast<int>(clusters.size()));
+        leaders[Key{T.reflected, rb, x.bin, y.bin}].push_back(static_cast<int>(clusters.size()));
         clusters.push_back({{i}, T.rotation, 0.0});
       } else {
         clusters[static_cast<std::size_t>(found)].members.push_back(i);
