@@ -655,6 +655,26 @@ std::vector<Eigen::Vector2d> free_edge_points(const OccupancyGrid& grid) {
 
 }  // namespace
 
+TEST_CASE("counting wall inliers may stop early only below what it was told is enough") {
+  // The candidates' first ranking stops counting one that cannot reach the worst kept count
+  // (WholeMapSelection); a count that reaches `enough` must be the full count.
+  detail::Random random(31);
+  std::vector<Eigen::Vector2d> walls, points;
+  for (int i = 0; i < 400; ++i) walls.emplace_back(random.uniform(0.0, 20.0), std::floor(random.uniform(0.0, 5.0)) * 3.0);
+  for (int i = 0; i < 300; ++i) points.emplace_back(random.uniform(0.0, 20.0), std::floor(random.uniform(0.0, 5.0)) * 3.0 + random.uniform(-0.8, 0.8));
+  const BoundaryLookup lookup(walls, 0.1, 2.0);
+  for (int t = 0; t < 40; ++t) {
+    const Similarity2 T{random.uniform(-0.2, 0.2), Eigen::Vector2d(random.uniform(-1.0, 1.0), random.uniform(-1.0, 1.0)), 1.0, false};
+    const std::size_t full = lookup.count_within(points, T, 0.5);
+    CHECK(full == static_cast<std::size_t>(std::lround(boundary_inlier_fraction(points, lookup, T, 0.5) * 300.0)));
+    for (const std::size_t enough : {std::size_t{1}, full / 2, full, full + 1, full + 40, std::size_t{300}}) {
+      const std::size_t counted = lookup.count_within(points, T, 0.5, enough);
+      if (full >= enough) CHECK(counted == full);
+      else CHECK(counted < enough);
+    }
+  }
+}
+
 TEST_CASE("ICP pairs a wall's face only with a face looking the same way") {
   // The source entered the room, the destination did not: the room's floor-side face lies 0.2 m
   // above the corridor's ceiling-side face, and pairing the two would pull the map across the wall.

@@ -291,6 +291,23 @@ class BoundaryLookup {
   /// The boundary point nearest to p, or nullptr when p is outside the lookup grid.
   const Eigen::Vector2d* nearest(const Eigen::Vector2d& p) const { return nearest_in(nearest_, p); }
 
+  /// How many of `points`, moved by T, have their `nearest` boundary point within `distance_m`.
+  /// With `enough` > 0 it may stop once fewer than `enough` can be reached, returning the count
+  /// so far (then below `enough`); a count of `enough` or more is always exact.
+  std::size_t count_within(const std::vector<Eigen::Vector2d>& points, const Similarity2& T, double distance_m,
+                           std::size_t enough = 0) const {
+    std::size_t count = 0;
+    const double d2 = distance_m * distance_m;
+    const Eigen::Matrix2d linear = T.linear();
+    for (std::size_t i = 0; i < points.size(); ++i) {
+      const Eigen::Vector2d q = linear * points[i] + T.translation;  // T * p
+      const Eigen::Vector2d* nearest_point = nearest(q);
+      count += nearest_point && (*nearest_point - q).squaredNorm() <= d2;
+      if (i % 16 == 15 && count + (points.size() - i - 1) < enough) break;
+    }
+    return count;
+  }
+
  private:
   const Eigen::Vector2d* nearest_in(const std::vector<int>& cells, const Eigen::Vector2d& p) const {
     const double fx = (p.x() - origin_.x()) / cell_m_, fy = (p.y() - origin_.y()) / cell_m_;
@@ -441,14 +458,8 @@ class BoundaryLookup {
 inline double boundary_inlier_fraction(const std::vector<Eigen::Vector2d>& source_points, const BoundaryLookup& dest,
                                        const Similarity2& T_dest_source, double distance_m) {
   if (source_points.empty() || dest.empty()) return 0.0;
-  std::size_t inliers = 0;
-  const double d2 = distance_m * distance_m;
-  for (const auto& p : source_points) {
-    const Eigen::Vector2d q = T_dest_source * p;
-    const Eigen::Vector2d* nearest = dest.nearest(q);
-    if (nearest && (*nearest - q).squaredNorm() <= d2) ++inliers;
-  }
-  return static_cast<double>(inliers) / static_cast<double>(source_points.size());
+  return static_cast<double>(dest.count_within(source_points, T_dest_source, distance_m)) /
+         static_cast<double>(source_points.size());
 }
 
 /// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept; the scale fitted

@@ -42,6 +42,9 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
+#include <queue>
+#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -162,7 +165,7 @@ struct WholeMapSelection {
         candidates[i].score = boundary_inlier_fraction(points, edges.dest_lookup, candidates[i].T, params.candidate_wall_distance_m);
       });
     };
-    score_on(sparse_walls);
+    score_sparse(candidates, sparse_walls, edges.dest_lookup, params);
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
     if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
     score_on(walls);
@@ -196,6 +199,36 @@ struct WholeMapSelection {
   }
 
  private:
+  /// The first, cheap ranking: each candidate's share of `points` within
+  /// `candidate_wall_distance_m` of the destination's edge. Only the best `verify_candidates` go
+  /// on, so a candidate stops counting once it cannot reach the worst of the best so far (its
+  /// score is then below theirs, and it is cut as before): the kept candidates, their scores and
+  /// their order are those of counting every point.
+  static void score_sparse(std::vector<ScoredTransform>& candidates, const std::vector<Eigen::Vector2d>& points,
+                           const BoundaryLookup& dest, const MatcherParams& params) {
+    if (points.empty() || dest.empty()) {
+      for (auto& c : candidates) c.score = 0.0;
+      return;
+    }
+    const std::size_t keep = params.verify_candidates, n = points.size();
+    const unsigned threads = std::max(1u, params.threads == 0 ? std::thread::hardware_concurrency() : params.threads);
+    const std::size_t blocks = std::min<std::size_t>(threads, std::max<std::size_t>(1, candidates.size()));
+    const std::size_t per_block = (candidates.size() + blocks - 1) / blocks;
+    // Blocks of consecutive candidates, each with its own best-so-far (what is cut cannot depend on
+    // the thread count's blocks anyway: only what is counted to the end).
+    detail::for_each_index(blocks, params.threads, [&](std::size_t b) {
+      std::priority_queue<std::size_t, std::vector<std::size_t>, std::greater<>> best;  // the `keep` highest counts
+      for (std::size_t i = b * per_block; i < std::min(candidates.size(), (b + 1) * per_block); ++i) {
+        const std::size_t enough = keep == 0 || best.size() < keep ? 0 : best.top();
+        const std::size_t count = dest.count_within(points, candidates[i].T, params.candidate_wall_distance_m, enough);
+        candidates[i].score = static_cast<double>(count) / static_cast<double>(n);
+        if (count < enough) continue;  // stopped early: below every kept count
+        best.push(count);
+        if (best.size() > keep) best.pop();
+      }
+    });
+  }
+
   /// Refines the finalists by ICP and scores them: a blend of the fine free-space IoU and the
   /// share of the source's free-space edge that lies on the destination's.
   static void refine_and_score(const SelectionInputs& in, std::vector<ScoredTransform>& finalists,
