@@ -241,6 +241,23 @@ TEST_CASE("walls against walls: a right answer's walls fall on the other map's, 
   CHECK_FALSE(wrong.ok);
   CHECK(wrong.evidence.occupied_wall_agreement < r.evidence.occupied_wall_agreement);
 
+  // The higher of the two directions: a robot map's furniture has nothing to land on in the
+  // layout, while the layout's walls all land on the robot map's.
+  RobotMapParams furnished = rp;
+  furnished.max_clutter_per_room = 8;
+  const RobotMap cluttered = make_robot_map(building, furnished, 44);
+  auto walls_of = [&](const OccupancyGrid& grid) {
+    const GridInfo info{grid.width(), grid.height(), grid.resolution(), grid.origin()};
+    return detail::occupied_walls(grid, info, matcher.params.occupied_point_spacing_m, 0.1,
+                                  matcher.params.occupied_wall_distance_m, matcher.params.occupied_wall_context_m);
+  };
+  const auto robot_walls = walls_of(cluttered.grid), layout_walls = walls_of(building.layout);
+  const double robot_on_layout = detail::near_share(robot_walls, layout_walls, cluttered.T_dest_source);
+  const double layout_on_robot = detail::near_share(layout_walls, robot_walls, cluttered.T_dest_source.inverse());
+  INFO("robot's walls on the layout's " << robot_on_layout << ", the layout's on the robot's " << layout_on_robot);
+  CHECK(layout_on_robot > robot_on_layout);
+  CHECK(detail::occupied_wall_agreement(robot_walls, layout_walls, cluttered.T_dest_source) == layout_on_robot);
+
   // A map without walls near the other's: not measured, and the decision reads 0.
   MatchResult none;
   CHECK(std::isnan(none.evidence.occupied_wall_agreement));

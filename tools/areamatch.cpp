@@ -759,7 +759,7 @@ const char* kCalibrateHelp =
     "a reliability table.\n"
     "Options:\n"
     "  --l2 L             L2 penalty on the weights (default 1)\n"
-    "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.7)\n"
+    "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.85)\n"
     "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
     "  --svg OUT.svg      the reliability diagram (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"

@@ -177,10 +177,12 @@ inline double near_share(const OccupiedWalls& from, const OccupiedWalls& onto, c
   return in_context ? static_cast<double>(near) / static_cast<double>(in_context) : std::numeric_limits<double>::quiet_NaN();
 }
 
-/// `MatchEvidence::occupied_wall_agreement`: the lower of the two directions' shares (one
-/// direction alone when the other's walls come near nothing).
+/// `MatchEvidence::occupied_wall_agreement`: the higher of the two directions' shares (one
+/// direction alone when the other's walls come near nothing). The higher: a SLAM map's furniture
+/// and laser streaks have nothing to land on in a floor plan, but the plan's walls all land on
+/// the SLAM map's; two alike buildings' differing dividers disagree both ways.
 inline double occupied_wall_agreement(const OccupiedWalls& source, const OccupiedWalls& dest, const Similarity2& T_dest_source) {
-  return std::fmin(near_share(source, dest, T_dest_source), near_share(dest, source, T_dest_source.inverse()));
+  return std::fmax(near_share(source, dest, T_dest_source), near_share(dest, source, T_dest_source.inverse()));
 }
 
 }  // namespace areamatch::detail

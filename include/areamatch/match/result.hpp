@@ -53,7 +53,8 @@ struct MatchEvidence {
   /// Walls against walls: of each map's occupied cells (their surfaces, one per
   /// `MatcherParams::occupied_point_spacing_m` square) that land within
   /// `occupied_wall_context_m` of the other map's, the share within `occupied_wall_distance_m`;
-  /// the lower of the two directions. Unlike the measures above it sees walls away from both
+  /// the higher of the two directions (a SLAM map's furniture has nothing to land on in a floor
+  /// plan; the plan's walls all land on the SLAM map's). Unlike the measures above it sees walls away from both
   /// maps' free space — the walls of rooms a robot saw but never entered — where two alike
   /// buildings that agree in their shared part still differ. NaN when neither map's walls come
   /// near the other's.
