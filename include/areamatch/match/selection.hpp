@@ -214,8 +214,8 @@ struct WholeMapSelection {
     const unsigned threads = std::max(1u, params.threads == 0 ? std::thread::hardware_concurrency() : params.threads);
     const std::size_t blocks = std::min<std::size_t>(threads, std::max<std::size_t>(1, candidates.size()));
     const std::size_t per_block = (candidates.size() + blocks - 1) / blocks;
-    // Blocks of consecutive candidates, each with its own best-so-far (what is cut cannot depend on
-    // the thread count's blocks anyway: only what is counted to the end).
+    // One block of consecutive candidates per thread, each with its own best-so-far: how many
+    // points a cut candidate was counted on depends on the blocks, what is kept does not.
     detail::for_each_index(blocks, params.threads, [&](std::size_t b) {
       std::priority_queue<std::size_t, std::vector<std::size_t>, std::greater<>> best;  // the `keep` highest counts
       for (std::size_t i = b * per_block; i < std::min(candidates.size(), (b + 1) * per_block); ++i) {
