@@ -14,13 +14,17 @@
 
 namespace areamatch::detail {
 
+/// The number of threads a `threads` parameter asks for: 0 means one per hardware thread (at least one).
+inline unsigned resolved_threads(unsigned threads) {
+  return threads == 0 ? std::max(1u, std::thread::hardware_concurrency()) : threads;
+}
+
 /// Calls `work(i)` for every i < count on `threads` threads (0: the hardware's count). When
 /// pieces throw, the exception of the lowest index is rethrown once all threads have stopped —
 /// the one a single thread would have met first, so errors do not depend on the thread count.
 template <class Work>
 void for_each_index(std::size_t count, unsigned threads, const Work& work) {
-  if (threads == 0) threads = std::max(1u, std::thread::hardware_concurrency());
-  threads = static_cast<unsigned>(std::min<std::size_t>(threads, count));
+  threads = static_cast<unsigned>(std::min<std::size_t>(resolved_threads(threads), count));
   if (threads <= 1) {
     for (std::size_t i = 0; i < count; ++i) work(i);
     return;

@@ -44,7 +44,6 @@
 #include <cstddef>
 #include <functional>
 #include <queue>
-#include <thread>
 #include <type_traits>
 #include <utility>
 #include <vector>
@@ -211,8 +210,7 @@ struct WholeMapSelection {
       return;
     }
     const std::size_t keep = params.verify_candidates, n = points.size();
-    const unsigned threads = std::max(1u, params.threads == 0 ? std::thread::hardware_concurrency() : params.threads);
-    const std::size_t blocks = std::min<std::size_t>(threads, std::max<std::size_t>(1, candidates.size()));
+    const std::size_t blocks = std::min<std::size_t>(detail::resolved_threads(params.threads), std::max<std::size_t>(1, candidates.size()));
     const std::size_t per_block = (candidates.size() + blocks - 1) / blocks;
     // One block of consecutive candidates per thread, each with its own best-so-far: how many
     // points a cut candidate was counted on depends on the blocks, what is kept does not.
