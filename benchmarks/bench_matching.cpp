@@ -9,6 +9,7 @@
 //                  (Matcher::prepare): segment the source and match, as when localising robot
 //                  maps against a floor plan; counters: segment_ms, prepare_ms (the source's match
 //                  data), hypotheses_ms (with pairs and clustering), selection_ms, answer_ms (the rest)
+//   onto_prepared_2t/<pair>  the same with MatcherParams::threads = 2 (wall-clock time)
 // Pairs are prepared on first use, so a --benchmark_filter run pays only for what it selects.
 //   build/benchmarks/areamatch_bench --benchmark_filter='^(match|pair|onto_prepared)/' --benchmark_out=matching.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
@@ -106,6 +107,15 @@ void register_pair(const std::string& name, std::function<Prepared()> make,
     state.counters["selection_ms"] = ms * sum.selection_s;
     state.counters["answer_ms"] = ms * (sum.match_s - sum.prepare_s - sum.hypotheses_s - sum.selection_s);
   })->Unit(benchmark::kMillisecond);
+  // The same on two threads (`MatcherParams::threads`): the pieces overlap, so only the time.
+  benchmark::RegisterBenchmark(("onto_prepared_2t/" + name).c_str(), [lazy](benchmark::State& state) {
+    const Prepared& p = lazy->get();
+    auto matcher = matcher_for(p.options);
+    if (p.options.source_door_width_m) matcher.segmenter.params.with_door_width(*p.options.source_door_width_m);
+    matcher.params.threads = 2;
+    const auto dest = matcher.prepare(p.dest, p.dest_graph);
+    for (auto _ : state) benchmark::DoNotOptimize(matcher.match(p.source, dest).score);
+  })->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
 void register_synthetic() {

@@ -13,6 +13,6 @@ mkdir -p "$out"
 bench="${AREAMATCH_BUILD_DIR:-build}/benchmarks"
 common=(--benchmark_repetitions=5 --benchmark_report_aggregates_only=true "$@")
 "$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^(segment|voronoi|voronoi_boost)/' --benchmark_out="$out/segmentation.json" --benchmark_out_format=json
-"$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^(match|pair|onto_prepared)/' --benchmark_out="$out/matching.json" --benchmark_out_format=json
+"$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^(match|pair|onto_prepared|onto_prepared_2t)/' --benchmark_out="$out/matching.json" --benchmark_out_format=json
 "$bench/areamatch_bench" "${common[@]}" --benchmark_filter='^BM_' --benchmark_out="$out/io.json" --benchmark_out_format=json
 python3 scripts/plot_benchmarks.py "$out" "$out/segmentation.json" "$out/matching.json" "$out/io.json"

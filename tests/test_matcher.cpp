@@ -90,11 +90,19 @@ TEST_CASE("any thread count gives the same answer, bit for bit") {
     PaperMatcher paper;
     const std::string one = without_timings(matcher.match(c.robot.grid, c.building.layout));
     const std::string paper_one = without_timings(paper.match(c.robot.grid, c.building.layout));
+    // A grid onto a prepared map: on threads, the source's cell data is built beside its
+    // segmentation, its edge lookup beside the hypotheses, and preparing overlaps the same way.
+    const auto layout = matcher.prepare(c.building.layout);
+    const std::string onto = without_timings(matcher.match(c.robot.grid, layout));
+    CHECK(onto == one);
     for (const unsigned threads : {2u, 3u, 0u}) {
       matcher.params.threads = threads;
       paper.params.threads = threads;
       CHECK(without_timings(matcher.match(c.robot.grid, c.building.layout)) == one);
       CHECK(without_timings(paper.match(c.robot.grid, c.building.layout)) == paper_one);
+      CHECK(without_timings(matcher.match(c.robot.grid, layout)) == onto);
+      CHECK(without_timings(matcher.match(c.robot.grid, matcher.prepare(c.building.layout))) == onto);
+      CHECK(without_timings(matcher.match(matcher.prepare(c.robot.grid), layout)) == onto);
     }
   }
 }

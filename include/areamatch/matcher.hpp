@@ -163,21 +163,18 @@ class Matcher {
     return e;
   }
 
-  /// Segments `grid` with `segmenter` and prepares it for matching.
-  PreparedMap prepare(const OccupancyGrid& grid) const { return prepare(grid, segmenter.segment(grid)); }
+  /// Segments `grid` with `segmenter` and prepares it for matching (with `params.threads` ≥ 2,
+  /// what needs only the cells is built beside the segmentation: the same map either way).
+  PreparedMap prepare(const OccupancyGrid& grid) const {
+    params.validate();
+    std::optional<detail::GridOnlyData> from_grid;
+    AreaGraph graph = segment_beside_grid_data(grid, from_grid);
+    return prepare_with(grid, std::move(graph), from_grid ? &*from_grid : nullptr);
+  }
 
   /// Prepares a map already segmented (by anything, e.g. with its own door width); the graph
   /// must come from the grid.
-  PreparedMap prepare(const OccupancyGrid& grid, AreaGraph graph) const {
-    params.validate();
-    check_graph(grid, graph, "prepared");
-    PreparedMap m;
-    m.grid_ = grid;
-    m.graph_ = std::move(graph);
-    m.key_ = detail::map_data_key(params, true);
-    if (!m.graph_.areas.empty()) m.data_ = detail::build_map_data(m.grid_, m.graph_, features, params, true);
-    return m;
-  }
+  PreparedMap prepare(const OccupancyGrid& grid, AreaGraph graph) const { return prepare_with(grid, std::move(graph), nullptr); }
 
   /// Matches two prepared maps. Not with `params.estimate_scale` (the source is re-segmented at
   /// each candidate scale: match its grid onto the prepared destination instead).
@@ -201,9 +198,10 @@ class Matcher {
       result.timings.total_s = detail::seconds_since(start);
       return result;
     }
-    const AreaGraph source_graph = segmenter.segment(source);
+    std::optional<detail::GridOnlyData> from_grid;
+    const AreaGraph source_graph = segment_beside_grid_data(source, from_grid);
     const double segment_source_s = detail::seconds_since(start);
-    MatchResult result = match_graphs(MapView{&source, &source_graph, nullptr}, view(dest));
+    MatchResult result = match_graphs(MapView{&source, &source_graph, nullptr}, view(dest), from_grid ? &*from_grid : nullptr);
     result.timings.segment_source_s = segment_source_s;
     result.timings.total_s = detail::seconds_since(start);
     return result;
@@ -278,6 +276,31 @@ class Matcher {
  private:
   static MapView view(const PreparedMap& m) { return MapView{&m.grid_, &m.graph_, &m.data_}; }
 
+  PreparedMap prepare_with(const OccupancyGrid& grid, AreaGraph graph, const detail::GridOnlyData* from_grid) const {
+    params.validate();
+    check_graph(grid, graph, "prepared");
+    PreparedMap m;
+    m.grid_ = grid;
+    m.graph_ = std::move(graph);
+    m.key_ = detail::map_data_key(params, true);
+    if (!m.graph_.areas.empty()) m.data_ = detail::build_map_data(m.grid_, m.graph_, features, params, true, params.threads, from_grid);
+    return m;
+  }
+
+  /// Segments `grid`; with `params.threads` ≥ 2, builds what of its match data needs only the
+  /// cells (`detail::grid_only_data`) into `from_grid` on a second thread meanwhile. Errors: the
+  /// segmentation's first, as on one thread.
+  AreaGraph segment_beside_grid_data(const OccupancyGrid& grid, std::optional<detail::GridOnlyData>& from_grid) const {
+    if (detail::resolved_threads(params.threads) < 2) return segmenter.segment(grid);
+    params.validate();
+    AreaGraph graph;
+    detail::for_each_index(2, params.threads, [&](std::size_t i) {
+      if (i == 0) graph = segmenter.segment(grid);
+      else from_grid = detail::grid_only_data(grid, params);
+    });
+    return graph;
+  }
+
   void check_prepared(const PreparedMap& m, const char* which) const {
     params.validate();
     if (!(m.key_ == detail::map_data_key(params, true))) {
@@ -316,7 +339,9 @@ class Matcher {
 
   /// The pipeline: what each map gives alone, area pairs, hypotheses, clusters, the selection's
   /// answer, what describes it, and the decision.
-  MatchResult match_graphs(const MapView& source_map, const MapView& dest_map) const {
+  /// `source_grid_data`: the source's `detail::grid_only_data`, when built beside its segmentation.
+  MatchResult match_graphs(const MapView& source_map, const MapView& dest_map,
+                           const detail::GridOnlyData* source_grid_data = nullptr) const {
     const AreaGraph& source = *source_map.graph;
     const AreaGraph& dest = *dest_map.graph;
     params.validate();
@@ -336,39 +361,67 @@ class Matcher {
     if (dest.areas.empty()) return finish("the destination map has no areas: " + dest.reason);
 
     // What each map gives alone: prepared beforehand, or built now (the destination's lookup
-    // with normals, for point-to-line ICP onto it).
+    // with normals, for point-to-line ICP onto it). Both built here: one thread each. Only the
+    // source (a grid onto a prepared map) with threads to spare: its areas' part, then the pairs,
+    // hypotheses and clusters (which read only that) on one thread, beside its cells' part (the
+    // edge lookup: the longest piece) on another. The same result either way.
     auto stage = std::chrono::steady_clock::now();
     std::optional<MapData> source_own, dest_own;
-    detail::for_each_index(2, params.threads, [&](std::size_t i) {
-      if (i == 0 && !source_map.data) source_own = detail::build_map_data(*source_map.grid, source, features, params, false);
-      if (i == 1 && !dest_map.data) dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true);
-    });
+    std::vector<AreaPair> pairs;
+    std::vector<Hypothesis> hypotheses;
+    std::vector<Cluster> clusters;
+    // Costs and mutual pairs (they do not change under reflection: computed once), hypotheses
+    // and, when there are any, their clusters.
+    auto find_clusters = [&](const MapData& source_data, const MapData& dest_data, unsigned threads) {
+      auto step = std::chrono::steady_clock::now();
+      const Eigen::MatrixXd cost = weighted_cost(features.costs(source_data.descriptors, dest_data.descriptors), weights.values);
+      pairs = mutual_nearest_pairs(cost, params.k);
+      result.statistics.mutual_pairs = pairs.size();
+      result.timings.features_s = detail::seconds_since(step);
+      step = std::chrono::steady_clock::now();
+      hypotheses = make_hypotheses(hypothesis_inputs(source, dest, source_data, dest_data), pairs, source_data, dest_data,
+                                   threads, result.statistics);
+      result.timings.hypotheses_s = detail::seconds_since(step);
+      if (hypotheses.empty()) return;
+      step = std::chrono::steady_clock::now();
+      clusters = clusterer.cluster(hypotheses);
+      result.statistics.clusters = clusters.size();
+      result.timings.clustering_s = detail::seconds_since(step);
+    };
+    if (!source_map.data && dest_map.data && detail::resolved_threads(params.threads) >= 2) {
+      source_own.emplace();
+      double part_s[2] = {0.0, 0.0};
+      detail::for_each_index(2, params.threads, [&](std::size_t part) {
+        const auto part_start = std::chrono::steady_clock::now();
+        if (part == 1) {
+          detail::build_edge_data(*source_own, *source_map.grid, source, params, false, source_grid_data);
+          part_s[1] = detail::seconds_since(part_start);
+          return;
+        }
+        detail::build_area_data(*source_own, source, features, params);
+        part_s[0] = detail::seconds_since(part_start);
+        find_clusters(*source_own, *dest_map.data, 1);
+      });
+      result.timings.prepare_s = part_s[0] + part_s[1];
+    } else {
+      detail::for_each_index(2, params.threads, [&](std::size_t i) {
+        if (i == 0 && !source_map.data) {
+          source_own = detail::build_map_data(*source_map.grid, source, features, params, false, 1, source_grid_data);
+        }
+        if (i == 1 && !dest_map.data) dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true);
+      });
+      if (source_own || dest_own) result.timings.prepare_s = detail::seconds_since(stage);
+      find_clusters(source_map.data ? *source_map.data : *source_own, dest_map.data ? *dest_map.data : *dest_own,
+                    params.threads);
+    }
     const MapData& source_data = source_map.data ? *source_map.data : *source_own;
     const MapData& dest_data = dest_map.data ? *dest_map.data : *dest_own;
-    if (source_own || dest_own) result.timings.prepare_s = detail::seconds_since(stage);
-
-    // Costs and mutual pairs. They do not change under reflection: computed once.
-    stage = std::chrono::steady_clock::now();
-    const Eigen::MatrixXd cost = weighted_cost(features.costs(source_data.descriptors, dest_data.descriptors), weights.values);
-    const std::vector<AreaPair> pairs = mutual_nearest_pairs(cost, params.k);
-    result.statistics.mutual_pairs = pairs.size();
-    result.timings.features_s = detail::seconds_since(stage);
-
-    stage = std::chrono::steady_clock::now();
-    const HypothesisInputs maps{&source, &dest, &source_data.coarse, &dest_data.coarse, source_data.wall_direction,
-                                dest_data.wall_direction};
-    const std::vector<Hypothesis> hypotheses = make_hypotheses(maps, pairs, source_data, dest_data, result.statistics);
-    result.timings.hypotheses_s = detail::seconds_since(stage);
+    const HypothesisInputs maps = hypothesis_inputs(source, dest, source_data, dest_data);
     if (hypotheses.empty()) {
       return finish("no transform hypothesis: " + std::to_string(pairs.size()) +
                     " mutual area pairs, none overlapping by at least " +
                     detail::format_double(params.hypotheses.min_area_overlap) + " under its own transform");
     }
-
-    stage = std::chrono::steady_clock::now();
-    const std::vector<Cluster> clusters = clusterer.cluster(hypotheses);
-    result.statistics.clusters = clusters.size();
-    result.timings.clustering_s = detail::seconds_since(stage);
 
     stage = std::chrono::steady_clock::now();
     const detail::MapEdges edges = detail::map_edges(source_data, dest_data);
@@ -384,13 +437,19 @@ class Matcher {
 
   /// The hypotheses of every mutual pair on each side of the mirror. One job per (side, pair),
   /// each into its own list, joined in job order: the same list for any thread count.
+  static HypothesisInputs hypothesis_inputs(const AreaGraph& source, const AreaGraph& dest, const MapData& source_data,
+                                            const MapData& dest_data) {
+    return HypothesisInputs{&source, &dest, &source_data.coarse, &dest_data.coarse, source_data.wall_direction,
+                            dest_data.wall_direction};
+  }
+
   std::vector<Hypothesis> make_hypotheses(const HypothesisInputs& maps, const std::vector<AreaPair>& pairs,
-                                          const MapData& source_data, const MapData& dest_data,
+                                          const MapData& source_data, const MapData& dest_data, unsigned threads,
                                           MatchStatistics& statistics) const {
     const std::vector<bool> sides = detail::mirror_sides(params);
     std::vector<std::vector<Hypothesis>> per_job(sides.size() * pairs.size());
     std::vector<std::size_t> overlay_failures(per_job.size(), 0);
-    detail::for_each_index(per_job.size(), params.threads, [&](std::size_t job) {
+    detail::for_each_index(per_job.size(), threads, [&](std::size_t job) {
       const AreaPair& pair = pairs[job % pairs.size()];
       const auto segments = features.segments(source_data.descriptors, dest_data.descriptors,
                                               static_cast<std::size_t>(pair.source), static_cast<std::size_t>(pair.dest));
@@ -418,7 +477,7 @@ class Matcher {
     detail::measure_margins(source_fine, dest_fine, selected, params, result);
     result.matched_areas = detail::area_correspondences(
         detail::area_wall_points(source, source_data.free_edge, params.correspondences.local.point_spacing_m), source, dest,
-        source_fine, dest_fine, edges.dest_lookup, best.T, params.correspondences);
+        source_fine, dest_fine, edges.dest_lookup, best.T, params.correspondences, params.threads);
     result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                        params.passage_distance_m, params.agreement_iou_weight);
     if (selected.refined) {

@@ -9,6 +9,7 @@
 /// map (`areamatch match --labels`).
 
 #include "../area_graph.hpp"
+#include "../detail/parallel.hpp"
 #include "../error.hpp"
 #include "../grid.hpp"
 #include "../transform.hpp"
@@ -23,6 +24,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <optional>
 #include <vector>
 
 namespace areamatch {
@@ -79,17 +81,17 @@ inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const AreaGrap
   return out;
 }
 
-/// `area_correspondences` with the source's per-area wall points given (`area_wall_points`).
+/// `area_correspondences` with the source's per-area wall points given (`area_wall_points`);
+/// the areas on `threads` threads (each into its own slot: the same list for any count).
 inline std::vector<MatchedAreaPair> area_correspondences(const std::vector<std::vector<Eigen::Vector2d>>& walls,
                                                          const AreaGraph& source, const AreaGraph& dest,
                                                          const AreaRaster& source_raster, const AreaRaster& dest_raster,
                                                          const BoundaryLookup& dest_edge, const Similarity2& T_dest_source,
-                                                         const CorrespondenceParams& params) {
+                                                         const CorrespondenceParams& params, unsigned threads = 1) {
   params.validate();
   const double scale2 = T_dest_source.scale * T_dest_source.scale;
-  std::vector<MatchedAreaPair> out;
-  std::vector<int> counts(dest.areas.size(), 0);
-  for (std::size_t i = 0; i < source.areas.size(); ++i) {
+  std::vector<std::optional<MatchedAreaPair>> per_area(source.areas.size());
+  for_each_index(source.areas.size(), threads, [&](std::size_t i) {
     // The area's own transform, kept only when it lays the area's walls better.
     Similarity2 T = T_dest_source;
     double on_walls = std::numeric_limits<double>::quiet_NaN();
@@ -105,19 +107,19 @@ inline std::vector<MatchedAreaPair> area_correspondences(const std::vector<std::
         on_walls = local_on_walls;
       }
     }
-    std::fill(counts.begin(), counts.end(), 0);
+    std::vector<int> counts(dest.areas.size(), 0);
     const Eigen::Affine2d to_cell = dest_raster.cell_from_world * T.affine();
     for (int index : source_raster.area_cells[i]) {
       const int label = dest_raster.label_at_cell(to_cell * source_raster.centres[static_cast<std::size_t>(index)]);
       if (label >= 0) ++counts[static_cast<std::size_t>(label)];
     }
     const auto it = std::max_element(counts.begin(), counts.end());  // the lowest id on ties
-    if (it == counts.end() || *it == 0) continue;
+    if (it == counts.end() || *it == 0) return;
     const std::size_t j = static_cast<std::size_t>(it - counts.begin());
     const double common_m2 = *it * source_raster.cell_area() * scale2;
     const double smaller = std::min(source.areas[i].size_m2 * scale2, dest.areas[j].size_m2);
     const double overlap = smaller > 0.0 ? std::min(1.0, common_m2 / smaller) : 0.0;
-    if (overlap < params.min_overlap) continue;
+    if (overlap < params.min_overlap) return;
     const double a = static_cast<double>(source_raster.area_cells[i].size()) * source_raster.cell_area() * scale2;
     const double b = static_cast<double>(dest_raster.area_cells[j].size()) * dest_raster.cell_area();
     MatchedAreaPair pair;
@@ -127,7 +129,11 @@ inline std::vector<MatchedAreaPair> area_correspondences(const std::vector<std::
     pair.iou = a + b - common_m2 > 0.0 ? std::min(1.0, common_m2 / (a + b - common_m2)) : 0.0;
     pair.T_dest_source = T;
     pair.wall_agreement = on_walls;
-    out.push_back(pair);
+    per_area[i] = pair;
+  });
+  std::vector<MatchedAreaPair> out;
+  for (const auto& pair : per_area) {
+    if (pair) out.push_back(*pair);
   }
   return out;
 }

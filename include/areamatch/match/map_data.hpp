@@ -5,6 +5,7 @@
 /// its lookup. Built once per map by `Matcher::prepare` (or per match), never per pair.
 
 #include "../area_graph.hpp"
+#include "../detail/parallel.hpp"
 #include "../grid.hpp"
 #include "evidence.hpp"
 #include "occupied_walls.hpp"
@@ -103,23 +104,84 @@ struct FacingEdges {
   BoundaryLookup lookup;
 };
 
-template <class Features>
-auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Features& features,
-                    const MatcherParams& params, bool normals) {
-  const RefineParams& r = params.refinement;
-  MapData<std::decay_t<decltype(features.describe(graph))>> d;
+/// What of a map's data its grid alone gives, before its Area Graph exists: the free-space edge
+/// cells of the whole grid and the occupied walls. A matcher with threads to spare builds it
+/// beside the segmentation and hands it to `build_map_data`, which then need not find them again.
+struct GridOnlyData {
+  GridInfo grid;                       ///< the frame it was built in
+  std::vector<std::size_t> free_edge;  ///< `edge_cells` of the free space over every cell
+  OccupiedWalls occupied;
+};
+
+inline GridInfo grid_info(const OccupancyGrid& grid) { return {grid.width(), grid.height(), grid.resolution(), grid.origin()}; }
+
+inline OccupiedWalls map_occupied_walls(const OccupancyGrid& grid, const GridInfo& info, const MatcherParams& params) {
+  return occupied_walls(grid, info, params.occupied_point_spacing_m, params.refinement.lookup_cell_m,
+                        params.occupied_wall_distance_m, params.occupied_wall_context_m);
+}
+
+inline GridOnlyData grid_only_data(const OccupancyGrid& grid, const MatcherParams& params) {
+  GridOnlyData out;
+  out.grid = grid_info(grid);
+  const auto& cells = grid.cells();
+  out.free_edge = edge_cells(out.grid, PixelBounds{0, 0, grid.width(), grid.height()},
+                             [&](std::size_t i) { return cells[i] == CellState::free; });
+  out.occupied = map_occupied_walls(grid, out.grid, params);
+  return out;
+}
+
+/// The part of `d` that reads the areas: descriptors, rasters, wall direction.
+template <class Descriptors, class Features>
+void build_area_data(MapData<Descriptors>& d, const AreaGraph& graph, const Features& features, const MatcherParams& params) {
   d.descriptors = features.describe(graph);
   d.coarse = make_area_raster(graph, params.coarse_cell_m);
   if (params.fine_cell_m != params.coarse_cell_m) d.fine_own = make_area_raster(graph, params.fine_cell_m);
   if (params.hypotheses.wall_directions) d.wall_direction = dominant_wall_direction(graph, params.hypotheses.wall_direction);
-  d.free_edge = free_edge_cells(grid, graph);  // found once: thinned for the points, the lookup, the rooms' walls
-  d.edge_points = boundary_points(graph.grid, d.free_edge, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
+}
+
+/// The part of `d` that reads the cells: the free-space edge, its points and lookup, the occupied
+/// walls; from `from_grid` (`grid_only_data`) where it was built in the graph's frame.
+template <class Descriptors>
+void build_edge_data(MapData<Descriptors>& d, const OccupancyGrid& grid, const AreaGraph& graph, const MatcherParams& params,
+                     bool normals, const GridOnlyData* from_grid) {
+  const RefineParams& r = params.refinement;
+  const GridInfo& g = graph.grid;
+  if (from_grid && !(from_grid->grid.width == g.width && from_grid->grid.height == g.height &&
+                     from_grid->grid.resolution == g.resolution && from_grid->grid.origin == g.origin)) {
+    from_grid = nullptr;
+  }
+  if (from_grid) {
+    // `edge_cells` within the areas' extent are the whole grid's edge cells inside it (a cell's
+    // neighbours count wherever they lie), in the same scan order.
+    const PixelBounds b = label_bounds(graph);
+    const auto width = static_cast<std::size_t>(g.width);
+    for (const std::size_t i : from_grid->free_edge) {
+      const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
+      if (x >= b.col0 && x < b.col1 && y >= b.row0 && y < b.row1) d.free_edge.push_back(i);
+    }
+    d.occupied = from_grid->occupied;
+  } else {
+    d.free_edge = free_edge_cells(grid, graph);  // found once: thinned for the points, the lookup, the rooms' walls
+    d.occupied = map_occupied_walls(grid, g, params);
+  }
+  d.edge_points = boundary_points(g, d.free_edge, r.point_spacing_m, static_cast<std::size_t>(r.max_points));
   d.walls = without_frontiers(grid, d.edge_points);
   // With same_side_only: which way each wall faces, so that ICP does not pair a wall's two faces.
-  d.lookup = edge_lookup(grid, graph.grid, d.free_edge, r, lookup_margin(params), normals, normals && r.same_side_only);
+  d.lookup = edge_lookup(grid, g, d.free_edge, r, lookup_margin(params), normals, normals && r.same_side_only);
   if (r.same_side_only) d.edge_sides = free_sides(grid, d.edge_points, r.free_side_radius_m);
-  d.occupied = occupied_walls(grid, graph.grid, params.occupied_point_spacing_m, r.lookup_cell_m, params.occupied_wall_distance_m,
-                              params.occupied_wall_context_m);
+}
+
+/// Everything matching builds from one map alone; the areas' part and the cells' part on two
+/// threads with `threads` ≥ 2 (the same data either way).
+template <class Features>
+auto build_map_data(const OccupancyGrid& grid, const AreaGraph& graph, const Features& features,
+                    const MatcherParams& params, bool normals, unsigned threads = 1,
+                    const GridOnlyData* from_grid = nullptr) {
+  MapData<std::decay_t<decltype(features.describe(graph))>> d;
+  for_each_index(2, threads, [&](std::size_t part) {
+    if (part == 0) build_area_data(d, graph, features, params);
+    else build_edge_data(d, grid, graph, params, normals, from_grid);
+  });
   return d;
 }
 
