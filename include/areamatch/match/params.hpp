@@ -30,10 +30,12 @@ struct MatcherParams {
   bool estimate_scale = false;
   ScaleParams scale;
   /// Threads of one match: the two maps segmented and their rasters, edges and lookups built side
-  /// by side, then the hypotheses of the area pairs, the candidates' scores and the finalists' ICP
-  /// spread over them. The result is the same, bit for bit, for any count (0: one per hardware
-  /// thread); with more than one, the policies' const member functions are called from several
-  /// threads at once (the built-in ones are pure).
+  /// by side, then the hypotheses of the area pairs, the candidates' scores, the finalists' ICP
+  /// and the rooms' correspondences spread over them. A grid matched onto a prepared map (and
+  /// `prepare(grid)`) builds what needs only its cells beside its segmentation, and its edge
+  /// lookup beside the pairs, hypotheses and clusters. The result is the same, bit for bit, for
+  /// any count (0: one per hardware thread); with more than one, the policies' const member
+  /// functions are called from several threads at once (the built-in ones are pure).
   unsigned threads = 1;
 
   // Whole-map verification (`WholeMapSelection`, match/selection.hpp).
