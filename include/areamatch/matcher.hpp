@@ -435,14 +435,15 @@ class Matcher {
     return finish(detail::refusal(result, params, selected.comparable_scores));
   }
 
-  /// The hypotheses of every mutual pair on each side of the mirror. One job per (side, pair),
-  /// each into its own list, joined in job order: the same list for any thread count.
+  /// What the hypotheses read of the two maps.
   static HypothesisInputs hypothesis_inputs(const AreaGraph& source, const AreaGraph& dest, const MapData& source_data,
                                             const MapData& dest_data) {
     return HypothesisInputs{&source, &dest, &source_data.coarse, &dest_data.coarse, source_data.wall_direction,
                             dest_data.wall_direction};
   }
 
+  /// The hypotheses of every mutual pair on each side of the mirror. One job per (side, pair),
+  /// each into its own list, joined in job order: the same list for any thread count.
   std::vector<Hypothesis> make_hypotheses(const HypothesisInputs& maps, const std::vector<AreaPair>& pairs,
                                           const MapData& source_data, const MapData& dest_data, unsigned threads,
                                           MatchStatistics& statistics) const {
