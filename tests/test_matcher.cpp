@@ -107,6 +107,25 @@ TEST_CASE("any thread count gives the same answer, bit for bit") {
   }
 }
 
+TEST_CASE("bad source grids onto a prepared map fail the same on one thread and on two") {
+  // On two threads the source's cells are scanned beside its segmentation: what the segmenter
+  // refuses must still be refused with its message, and a map without areas still reported.
+  const auto c = areamatch_test::synthetic_case(7);
+  for (const unsigned threads : {1u, 2u}) {
+    Matcher<> matcher;
+    matcher.params.threads = threads;
+    const auto layout = matcher.prepare(c.building.layout);
+    CHECK_THROWS_WITH_AS(matcher.match(OccupancyGrid{}, layout), "cannot segment an empty grid", parameter_error);
+    CHECK_THROWS_WITH_AS(matcher.prepare(OccupancyGrid{}), "cannot segment an empty grid", parameter_error);
+    const MatchResult unknown = matcher.match(OccupancyGrid(60, 40, 0.05), layout);
+    CHECK_FALSE(unknown.ok);
+    CHECK(unknown.reason.find("the source map has no areas") == 0);
+    const MatchResult walls = matcher.match(OccupancyGrid(60, 40, 0.05, {}, CellState::occupied), layout);
+    CHECK_FALSE(walls.ok);
+    CHECK(walls.reason.find("the source map has no areas") == 0);
+  }
+}
+
 TEST_CASE("a map matched against itself gives the identity") {
   const auto building = generate_building({}, 3);
   const MatchResult r = Matcher<>{}.match(building.layout, building.layout);

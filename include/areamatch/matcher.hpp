@@ -39,6 +39,7 @@
 #include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
+#include "image.hpp"
 #include "match/acceptance.hpp"
 #include "match/clusterer.hpp"
 #include "match/correspondence.hpp"
@@ -291,7 +292,9 @@ class Matcher {
   /// cells (`detail::grid_only_data`) into `from_grid` on a second thread meanwhile. Errors: the
   /// segmentation's first, as on one thread.
   AreaGraph segment_beside_grid_data(const OccupancyGrid& grid, std::optional<detail::GridOnlyData>& from_grid) const {
-    if (detail::resolved_threads(params.threads) < 2) return segmenter.segment(grid);
+    // A grid the segmenter refuses outright is not scanned beside it.
+    const long long cells = static_cast<long long>(grid.width()) * grid.height();
+    if (detail::resolved_threads(params.threads) < 2 || grid.empty() || cells > max_grid_cells) return segmenter.segment(grid);
     params.validate();
     AreaGraph graph;
     detail::for_each_index(2, params.threads, [&](std::size_t i) {
