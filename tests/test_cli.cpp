@@ -310,6 +310,10 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   CHECK(chosen.out.find("rule chosen on all rows") != std::string::npos);
   CHECK(chosen.out.find("rules chosen in the 4 folds") != std::string::npos);
   CHECK(chosen.out.find("total (nested cross-validation) | ") != std::string::npos);
+  CHECK(chosen.out.find(", lower walls ") != std::string::npos);
+  const Run always = run("calibrate " + out + "/results.csv --gate-max-lower-walls 2", false);
+  CHECK(always.status == 0);
+  CHECK(always.out.find("with lower wall agreement <= 2, or p_correct >= 0.85") != std::string::npos);
   CHECK(run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 2").status == 2);
   CHECK(read_text(out + "/reliability.svg").find("<svg") != std::string::npos);
   CHECK(run("calibrate " + out + "/missing.csv").status == 2);

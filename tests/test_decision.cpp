@@ -13,6 +13,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -187,6 +188,42 @@ TEST_CASE("the rule: agreement gate or a sure model; min_p_correct rejects whate
   Matcher<> bad;
   bad.params.decision.accept_p_correct = -0.1;
   CHECK_THROWS_WITH_AS(bad.match(robot.grid, building.layout), doctest::Contains("accept_p_correct"), parameter_error);
+}
+
+TEST_CASE("the agreement gate opens only where one map's walls are largely unexplained by the other's") {
+  // The gate rescues right answers the model underrates because one map is cluttered (a SLAM
+  // map's furniture against a plan: walls agree one way only); where the walls agree both ways the
+  // model judges alone — two alike buildings agree like that too.
+  const MatcherParams params;
+  MatchResult r;
+  r.score = 0.6;
+  r.confidence = 0.05;
+  r.evidence.agreement = 0.85;
+  r.evidence.reverse_wall_agreement = 0.9;
+  r.evidence.forward_wall_agreement = 0.45;  // lab_b-like: the SLAM map's clutter unexplained
+  r.p_correct = 0.2;
+  CHECK(detail::passes_agreement_gate(r.evidence, params));
+  CHECK(detail::refusal(r, params, true).empty());
+  r.evidence.forward_wall_agreement = 0.8;  // both ways: the model alone, and it is not sure
+  CHECK(lower_wall_agreement(r.evidence) == 0.8);
+  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params));
+  const std::string refused = detail::refusal(r, params, true);
+  CHECK(refused.find("gate_max_lower_walls 0.7") != std::string::npos);
+  CHECK(refused.find("accept_p_correct 0.85") != std::string::npos);
+  r.p_correct = 0.9;  // ... unless it is sure
+  CHECK(detail::refusal(r, params, true).empty());
+  r.p_correct = 0.2;
+  MatcherParams always = params;
+  always.gate_max_lower_walls = 1.01;  // the rule before 2026-12-03
+  CHECK(detail::refusal(r, always, true).empty());
+  r.evidence.forward_wall_agreement = std::numeric_limits<double>::quiet_NaN();  // not measured: lower 0
+  CHECK(lower_wall_agreement(r.evidence) == 0.0);
+  CHECK(detail::passes_agreement_gate(r.evidence, params));
+  // The paper's preset answers whatever the walls.
+  CHECK(MatcherParams::paper().gate_max_lower_walls > 1.0);
+  MatcherParams bad;
+  bad.gate_max_lower_walls = -0.1;
+  CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_max_lower_walls"), parameter_error);
 }
 
 TEST_CASE("the turn margin: a right answer lies better than its own quarter turns and mirror images") {

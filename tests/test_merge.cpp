@@ -349,8 +349,9 @@ TEST_CASE("merge_maps until_connected: fewer matches, measured against all pairs
                                    << maps_wrong << " maps placed wrongly, " << matches << " matches (all pairs: " << all_pairs
                                    << ")");
   // Measured: 180 matches instead of 900, 18 / 20 buildings right, and 2 of the 200 maps placed
-  // wrongly — accepted wrong matches that no loop checks (all pairs: 0 wrong, above). That is
-  // why all_pairs is the default; until_connected is for when matching time matters more.
+  // wrongly — accepted wrong matches that no loop checks (all pairs: 0 wrong, above); since the
+  // agreement gate needs walls that disagree (2026-12-03), 182 matches and 0 placed wrongly. No
+  // loop checks a match still: all_pairs is the default, until_connected for when time matters more.
   if (quick) {  // one small building: the code runs (its rates mean nothing on one sample)
     CHECK(matches <= all_pairs);
     return;

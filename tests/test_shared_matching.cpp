@@ -260,7 +260,7 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
   std::size_t right = 0, false_rejects = 0, wrong = 0, false_accepts = 0;
   for (std::size_t i = 0; i < handheld_rows; ++i) {
     const JudgedRow& r = rows[i];
-    const bool accepted = r.row.result.evidence.agreement >= defaults.min_agreement ||
+    const bool accepted = detail::passes_agreement_gate(r.row.result.evidence, defaults) ||
                           predicted[i] >= defaults.decision.accept_p_correct;
     if (r.right) {
       ++right;

@@ -19,6 +19,7 @@
 #include <areamatch/merge.hpp>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cctype>
 #include <cmath>
@@ -753,7 +754,8 @@ const char* kCalibrateHelp =
     "pairs are judged by a model fitted without any pair that touches that building (maps joined by a\n"
     "pair of one building are one building). A row is right when its transform is within the\n"
     "manifest's correct_if; pairs of different buildings are wrong; ambiguous pairs are left out.\n"
-    "The rule judged is the matcher's: accepted when agreement >= A or p_correct >= P. Prints per\n"
+    "The rule judged is the matcher's: accepted when p_correct >= P, or agreement >= A with the lower\n"
+    "of the two wall agreements <= W. Prints per\n"
     "building and in total the false rejects (right answers refused) and false accepts (wrong answers\n"
     "accepted), the same in-sample, the totals of other rules, the coefficients fitted on all rows and\n"
     "a reliability table.\n"
@@ -761,11 +763,12 @@ const char* kCalibrateHelp =
     "  --l2 L             L2 penalty on the weights (default 1)\n"
     "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.85)\n"
     "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
+    "  --gate-max-lower-walls W  ... when the lower wall agreement is <= W (default 0.7; above 1: always)\n"
     "  --svg OUT.svg      the reliability diagram (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
     "                     the in-sample p_correct and whether the rule accepts it (cross-validated):\n"
     "                     to see which pairs a building's false rejects and accepts are\n"
-    "  --choose-rule      also choose A and P from data (the fewest false rejects with at most F of the\n"
+    "  --choose-rule      also choose A, P and W from data (the fewest false rejects with at most F of the\n"
     "                     wrong answers accepted, judged on leave-one-building-out predictions) and\n"
     "                     measure that choice by nested leave-one-building-out cross-validation: each\n"
     "                     building is judged by a model and thresholds chosen without it (slow: one\n"
@@ -773,7 +776,7 @@ const char* kCalibrateHelp =
     "  --max-false-accept F  the bound for --choose-rule (default 0.005)\n";
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "svg", "predictions", "max-false-accept"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "svg", "predictions", "max-false-accept"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -784,6 +787,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   base.accept_p_correct = args.number("accept-p", false, true).value_or(base.accept_p_correct);
   base.validate();
   const double gate = args.number("min-agreement", false, true).value_or(areamatch::MatcherParams{}.min_agreement);
+  const double gate_walls =
+      args.number("gate-max-lower-walls", false, true).value_or(areamatch::MatcherParams{}.gate_max_lower_walls);
   std::vector<CalibrationRow> rows;
   for (const auto& path : args.positional()) {
     auto more = read_calibration_rows(path);
@@ -797,7 +802,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::vector<double> in_sample;
   for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
 
-  const Rule rule{base.accept_p_correct, gate}, model_half{0.5, 2.0}, gate_alone{2.0, gate};
+  const Rule rule{base.accept_p_correct, gate, gate_walls}, model_half{0.5, 2.0}, gate_alone{2.0, gate, gate_walls};
   std::vector<DecisionCounts> per_building(buildings.size());
   DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
   for (std::size_t i = 0; i < rows.size(); ++i) {
@@ -810,7 +815,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     DecisionCounts::add_per_building(per_building, r, accepted);
   }
   std::cout << rows.size() << " rows, " << buildings.size() << " buildings; rule: agreement >= " << format_double(gate)
-            << " or p_correct >= " << format_double(base.accept_p_correct) << "\n\n"
+            << " with lower wall agreement <= " << format_double(gate_walls) << ", or p_correct >= "
+            << format_double(base.accept_p_correct) << "\n\n"
             << "leave-one-building-out (a pair of two buildings counts under both):\n"
             << "building | right answers | false rejects | wrong answers of one building | accepted | pairs of different buildings | accepted\n";
   auto line = [](const std::string& name, const DecisionCounts& c) {
@@ -822,7 +828,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   for (std::size_t b = 0; b < buildings.size(); ++b) std::cout << line(buildings[b], per_building[b]);
   std::cout << line("total (cross-validated)", cv_total) << line("total (in-sample)", in_sample_total)
             << line("other rule: p_correct >= 0.5 alone (cross-validated)", cv_model_half)
-            << line("other rule: agreement >= " + format_double(gate) + " alone", gate_only);
+            << line("other rule: agreement >= " + format_double(gate) + " (lower walls <= " + format_double(gate_walls) +
+                        ") alone", gate_only);
   std::cout << "\nfitted on all rows: bias = " << format_fixed(fitted.bias, 3) << ", weights = {";
   for (std::size_t i = 0; i < fitted.weights.size(); ++i) {
     std::cout << (i ? ", " : "") << format_fixed(fitted.weights[i], 3);
@@ -867,14 +874,16 @@ int run_calibrate(const std::vector<std::string>& tokens) {
       nested_total.add(r.sample.correct, r.different_buildings, accepted[i]);
       DecisionCounts::add_per_building(nested_per_building, r, accepted[i]);
     }
-    std::map<std::pair<double, double>, int> folds;
-    for (const Rule& fold_rule : chosen) ++folds[{fold_rule.min_agreement, fold_rule.accept_p}];
+    std::map<std::array<double, 3>, int> folds;
+    for (const Rule& fold_rule : chosen) ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.accept_p}];
     std::cout << "\nrule chosen on all rows (at most " << format_double(max_false_accept)
               << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
-              << format_double(shipped.min_agreement) << " or p_correct >= " << format_double(shipped.accept_p)
+              << format_double(shipped.min_agreement) << " with lower wall agreement <= "
+              << format_double(shipped.max_lower_walls) << ", or p_correct >= " << format_double(shipped.accept_p)
               << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
     for (const auto& [thresholds, n] : folds) {
-      std::cout << " [agreement " << format_double(thresholds.first) << ", p " << format_double(thresholds.second) << "] x" << n;
+      std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1]) << ", p "
+                << format_double(thresholds[2]) << "] x" << n;
     }
     std::cout << "\n\nnested leave-one-building-out (model and thresholds chosen without the building):\n";
     for (std::size_t b = 0; b < buildings.size(); ++b) std::cout << line(buildings[b], nested_per_building[b]);

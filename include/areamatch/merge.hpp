@@ -32,6 +32,7 @@
 #include "detail/timing.hpp"
 #include "error.hpp"
 #include "grid.hpp"
+#include "match/acceptance.hpp"
 #include "match/map_data.hpp"
 #include "match/params.hpp"
 #include "match/refine.hpp"
@@ -70,7 +71,8 @@ struct MergeParams {
   /// the smallest wrong answer that matters, a slide by one room (≥ 2.5 m).
   double max_residual_m = 1.0;
   /// A map joined to the others by one accepted match only, and that accepted by the calibrated
-  /// model alone (agreement below `MatcherParams::min_agreement`), must reach this p_correct:
+  /// model alone (not through the agreement gate: `MatcherParams::min_agreement`,
+  /// `gate_max_lower_walls`), must reach this p_correct:
   /// nothing else corroborates it, and a merge tries every pair, so one false accept would place
   /// a map of another building. 0.9: the model-alone threshold of the decision until 2026-12-01
   /// (its cross-validated false accepts 5 of 3567). In the F5 merge every scan has at least five
@@ -287,7 +289,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   for (std::size_t e = 0; e < result.edges.size(); ++e) {
     MergeEdge& edge = result.edges[e];
     const bool lone = accepted_matches[edge.source] == 1 || accepted_matches[edge.dest] == 1;
-    if (!edge.match.ok || !lone || edge.match.evidence.agreement >= matcher.params.min_agreement ||
+    if (!edge.match.ok || !lone || detail::passes_agreement_gate(edge.match.evidence, matcher.params) ||
         edge.match.p_correct >= params.lone_match_min_p_correct) {
       continue;
     }

@@ -192,9 +192,13 @@ inline std::vector<double> leave_one_building_out(const std::vector<CalibrationR
 
 /// The matcher's acceptance rule: accepted when agreement >= `min_agreement` or p_correct >=
 /// `accept_p` (a threshold above 1 turns its part off).
+/// The matcher's rule: accepted at p_correct ≥ accept_p, or at agreement ≥ min_agreement when
+/// the lower wall agreement (`walls_worst`) is at most max_lower_walls (above 1: always).
 struct Rule {
-  double accept_p = 0.9, min_agreement = 0.835;
-  bool accepts(const CalibrationRow& r, double p) const { return p >= accept_p || r.agreement >= min_agreement; }
+  double accept_p = 0.9, min_agreement = 0.835, max_lower_walls = 2.0;
+  bool accepts(const CalibrationRow& r, double p) const {
+    return p >= accept_p || (r.agreement >= min_agreement && r.sample.features.values[1] <= max_lower_walls);
+  }
 };
 
 /// One line per row: its buildings, label, agreement, cross-validated and in-sample p_correct, and
@@ -228,6 +232,11 @@ inline const std::vector<double>& min_agreement_grid() {
   static const std::vector<double> grid = {0.8, 0.81, 0.82, 0.83, 0.835, 0.84, 0.85, 0.86, 0.87, 0.88, 0.9, 1.01};
   return grid;
 }
+/// From lenient to strict, as the others (above 1: the gate whatever the walls).
+inline const std::vector<double>& max_lower_walls_grid() {
+  static const std::vector<double> grid = {1.01, 0.9, 0.8, 0.75, 0.7, 0.65, 0.6, 0.55, 0.5};
+  return grid;
+}
 
 /// The rule with the fewest false rejects on rows `subset` (judged by `predicted`, one per row of
 /// `subset`) whose share of wrong answers accepted stays at or below `max_false_accept`; ties go
@@ -244,25 +253,27 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
   bool first = true;
   for (double accept_p : accept_p_grid()) {
     for (double min_agreement : min_agreement_grid()) {
-      const Rule rule{accept_p, min_agreement};
-      std::size_t rejects = 0, accepts = 0;
-      for (std::size_t k = 0; k < subset.size(); ++k) {
-        const CalibrationRow& r = rows[subset[k]];
-        const bool accepted = rule.accepts(r, predicted[k]);
-        rejects += r.sample.correct && !accepted;
-        accepts += !r.sample.correct && accepted;
-      }
-      const bool keeps = static_cast<double>(accepts) <= allowed;
-      // The grids run from lenient to strict: on a tie the later (stricter) rule wins.
-      const bool better = first || (keeps && !best_keeps) ||
-                          (keeps == best_keeps && (keeps ? std::pair(rejects, accepts) <= std::pair(best_rejects, best_accepts)
-                                                         : std::pair(accepts, rejects) <= std::pair(best_accepts, best_rejects)));
-      if (better) {
-        best = rule;
-        best_keeps = keeps;
-        best_rejects = rejects;
-        best_accepts = accepts;
-        first = false;
+      for (double max_lower_walls : max_lower_walls_grid()) {
+        const Rule rule{accept_p, min_agreement, max_lower_walls};
+        std::size_t rejects = 0, accepts = 0;
+        for (std::size_t k = 0; k < subset.size(); ++k) {
+          const CalibrationRow& r = rows[subset[k]];
+          const bool accepted = rule.accepts(r, predicted[k]);
+          rejects += r.sample.correct && !accepted;
+          accepts += !r.sample.correct && accepted;
+        }
+        const bool keeps = static_cast<double>(accepts) <= allowed;
+        // The grids run from lenient to strict: on a tie the later (stricter) rule wins.
+        const bool better = first || (keeps && !best_keeps) ||
+                            (keeps == best_keeps && (keeps ? std::pair(rejects, accepts) <= std::pair(best_rejects, best_accepts)
+                                                           : std::pair(accepts, rejects) <= std::pair(best_accepts, best_rejects)));
+        if (better) {
+          best = rule;
+          best_keeps = keeps;
+          best_rejects = rejects;
+          best_accepts = accepts;
+          first = false;
+        }
       }
     }
   }

@@ -2,17 +2,26 @@
 /// \file match/acceptance.hpp
 /// The rule that sets `MatchResult::ok` (docs/matching.md, "the decision"): an answer is refused
 /// when its whole-map score is below `min_score`, when the maps agree too little and the
-/// calibrated model is not sure (`min_agreement`, `decision.accept_p_correct`), when the model
+/// calibrated model is not sure (`min_agreement`, `decision.accept_p_correct`; the agreement
+/// alone does not do where the walls agree both ways, `gate_max_lower_walls`), when the model
 /// finds it too likely wrong (`decision.min_p_correct`), or when a rival is too close
 /// (`min_confidence`).
 
 #include "../detail/format.hpp"
+#include "decision.hpp"
 #include "params.hpp"
 #include "result.hpp"
 
 #include <string>
 
 namespace areamatch::detail {
+
+/// Whether the agreement gate lets an answer through whatever the model says: the maps agree
+/// (`min_agreement`) and one map's walls are largely unexplained by the other's
+/// (`gate_max_lower_walls`).
+inline bool passes_agreement_gate(const MatchEvidence& evidence, const MatcherParams& params) {
+  return evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls;
+}
 
 /// Why the answer in `result` (margins, evidence and p_correct measured) is refused; empty when
 /// it is accepted. `score_gate`: its score is on the whole-map scale that `min_score` applies to.
@@ -23,6 +32,15 @@ inline std::string refusal(const MatchResult& result, const MatcherParams& param
   }
   const MatchEvidence& evidence = result.evidence;
   const bool model_sure = result.p_correct >= params.decision.accept_p_correct;
+  const double lower_walls = lower_wall_agreement(evidence);
+  if (evidence.agreement >= params.min_agreement && lower_walls > params.gate_max_lower_walls && !model_sure) {
+    return "the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
+           format_double(params.min_agreement) + ") and their walls agree both ways (the lower " +
+           format_fixed(lower_walls, 3) + " > gate_max_lower_walls " + format_double(params.gate_max_lower_walls) +
+           "), where the calibrated model judges alone, and it is not sure enough: p_correct " +
+           format_fixed(result.p_correct, 3) + " < accept_p_correct " + format_double(params.decision.accept_p_correct) +
+           " (alike buildings agree like this too)";
+  }
   if (evidence.agreement < params.min_agreement && !model_sure) {
     return "the maps agree too little under the best transform to be the same building: agreement " +
            format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(params.min_agreement) +

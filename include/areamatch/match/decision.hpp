@@ -53,8 +53,8 @@ struct DecisionFeatures {
 };
 
 /// A logistic model p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) and the acceptance rule:
-/// ok when agreement ≥ `MatcherParams::min_agreement` or p ≥ `accept_p_correct`, and p ≥
-/// `min_p_correct`.
+/// ok when p ≥ `accept_p_correct`, or agreement ≥ `MatcherParams::min_agreement` with the lower
+/// wall agreement ≤ `MatcherParams::gate_max_lower_walls`; and p ≥ `min_p_correct`.
 struct DecisionParams {
   /// Fitted by `areamatch calibrate` (l2 = 1) on the 7392 rows of `scripts/calibration_data.sh`
   /// (141 buildings: shared/pairs.json and its pairs of different buildings both ways,
@@ -67,13 +67,14 @@ struct DecisionParams {
   std::array<double, DecisionFeatures::size> weights = {12.079, -1.785, 1.611, 2.541, 2.024,
                                                         -0.793, 5.543,  2.833, 9.905};  ///< `names` order
   /// An answer is accepted on the model alone at or above this, even when the maps' agreement is
-  /// below `MatcherParams::min_agreement`: the rule is "agreement ≥ min_agreement, or p_correct ≥
-  /// accept_p_correct". 0.85 is what `areamatch calibrate --choose-rule --max-false-accept 0.002`
-  /// chooses from data (the fewest right answers rejected with at most 0.2 % of the wrong ones
-  /// accepted, judged on leave-one-building-out predictions; 140 of the 141 folds of the nested
-  /// cross-validation choose it too). Cross-validated by building the rule rejects 2 of 256 right
-  /// answers and accepts 6 of 7134 wrong ones; the whole choice, cross-validated by building
-  /// (nested), rejects 0.8 % and accepts 0.07 % (docs/evaluation.md).
+  /// below `MatcherParams::min_agreement`: the rule is "p_correct ≥ accept_p_correct, or agreement
+  /// ≥ min_agreement with the lower wall agreement ≤ gate_max_lower_walls". 0.85 is what
+  /// `areamatch calibrate --choose-rule --max-false-accept 0.002` chooses from data (the fewest
+  /// right answers rejected with at most 0.2 % of the wrong ones accepted, judged on
+  /// leave-one-building-out predictions; 139 of the 141 folds of the nested cross-validation
+  /// choose it too). Cross-validated by building the rule rejects 2 of 256 right answers and
+  /// accepts 1 of 7134 wrong ones; the whole choice, cross-validated by building (nested), the
+  /// same (docs/evaluation.md).
   double accept_p_correct = 0.85;
   /// Below this the answer is rejected whatever the agreement (0: off).
   double min_p_correct = 0.0;
@@ -92,6 +93,13 @@ struct DecisionParams {
   }
 };
 
+/// The lower of the two wall agreements in [0, 1] (0 when not measured): the decision's
+/// `walls_worst`, and what limits the agreement gate (`MatcherParams::gate_max_lower_walls`).
+inline double lower_wall_agreement(const MatchEvidence& e) {
+  const double lower = std::min(e.forward_wall_agreement, e.reverse_wall_agreement);
+  return std::isfinite(lower) ? std::clamp(lower, 0.0, 1.0) : 0.0;
+}
+
 /// The decision's signals of a result (NaN-free: missing margins count as none).
 inline DecisionFeatures decision_features(const MatchResult& r) {
   const MatchEvidence& e = r.evidence;
@@ -101,7 +109,7 @@ inline DecisionFeatures decision_features(const MatchResult& r) {
   // Not measured (the turn check needs the refinement): no sign that the answer stands out.
   const double turn_margin = std::isfinite(e.turn_margin) ? std::clamp(e.turn_margin, -1.0, 1.0) : 0.0;
   f.values = {unit(std::max(e.forward_wall_agreement, e.reverse_wall_agreement)),
-              unit(std::min(e.forward_wall_agreement, e.reverse_wall_agreement)),
+              lower_wall_agreement(e),
               unit(e.room_agreement),
               margin,
               std::log10(margin + 0.01),

@@ -92,6 +92,16 @@ struct MatcherParams {
   /// Alone it rejects right answers of unseen buildings and hand-held scans (agreement 0.77-0.83):
   /// `decision.accept_p_correct` lets the calibrated model accept those.
   double min_agreement = 0.835;
+  /// The agreement gate (`min_agreement`) accepts an answer the model is not sure of only where
+  /// the lower of the two wall agreements (`MatchEvidence::forward_wall_agreement` and
+  /// `reverse_wall_agreement`, the decision's `walls_worst`) is at most this. The gate is for a
+  /// map whose walls the other cannot explain — a SLAM map's furniture and laser streaks against
+  /// a floor plan — where the model underrates right answers (lab_b's p_correct 0.09–0.14 cross-
+  /// validated, lower walls 0.42–0.43); where the walls agree both ways the model judges alone
+  /// (two alike buildings' partial maps agreed at 0.84 with lower walls 0.71–0.92). 0.7 is what
+  /// `areamatch calibrate --choose-rule` chooses from data, in all 141 folds of its nested
+  /// cross-validation (docs/evaluation.md). Above 1: the gate applies whatever the walls.
+  double gate_max_lower_walls = 0.7;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
   /// the two wall agreements). A map confirmed on little of the other's free space is less certain.
   double agreement_iou_weight = 0.2;
@@ -122,6 +132,7 @@ struct MatcherParams {
     p.refine = false;
     p.min_score = 0.0;          // the paper has no rejection rule:
     p.min_agreement = 0.0;
+    p.gate_max_lower_walls = 2.0;
     p.decision.min_p_correct = 0.0;
     p.decision.accept_p_correct = 1.0;
     p.min_confidence = -1.0;    // it always answers
@@ -153,6 +164,7 @@ struct MatcherParams {
     detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");
     detail::require_non_negative(min_score, "MatcherParams::min_score");
     detail::require_non_negative(min_agreement, "MatcherParams::min_agreement");
+    detail::require_non_negative(gate_max_lower_walls, "MatcherParams::gate_max_lower_walls");
     decision.validate();
     if (!(agreement_iou_weight >= 0.0 && agreement_iou_weight <= 1.0)) {
       throw parameter_error("MatcherParams::agreement_iou_weight must be in [0, 1]");
