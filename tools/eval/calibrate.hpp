@@ -28,7 +28,8 @@ namespace areamatch_cli {
 struct CalibrationRow {
   std::string name, source, destination;
   bool different_buildings = false;
-  double agreement = 0.0;  ///< MatchEvidence::agreement, for the rule's agreement gate
+  double agreement = 0.0;    ///< MatchEvidence::agreement, for the rule's agreement gate
+  double lower_walls = 0.0;  ///< `areamatch::lower_wall_agreement`, which limits the gate
   areamatch::DecisionSample sample;
   int source_building = -1, dest_building = -1;  ///< filled by `assign_buildings`
   /// The two buildings, as `areamatch::leave_one_building_out` takes them.
@@ -117,6 +118,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     r.confidence = value(f, c_confidence);
     row.sample.features = areamatch::decision_features(r);
     row.agreement = value(f, c_agreement);
+    row.lower_walls = areamatch::lower_wall_agreement(r.evidence);
     row.sample.correct = !row.different_buildings && f[c_truth] == "true";
     rows.push_back(std::move(row));
   }
@@ -197,7 +199,7 @@ inline std::vector<double> leave_one_building_out(const std::vector<CalibrationR
 struct Rule {
   double accept_p = 0.9, min_agreement = 0.835, max_lower_walls = 2.0;
   bool accepts(const CalibrationRow& r, double p) const {
-    return p >= accept_p || (r.agreement >= min_agreement && r.sample.features.values[1] <= max_lower_walls);
+    return p >= accept_p || (r.agreement >= min_agreement && r.lower_walls <= max_lower_walls);
   }
 };
 
