@@ -32,15 +32,6 @@ inline std::string refusal(const MatchResult& result, const MatcherParams& param
   }
   const MatchEvidence& evidence = result.evidence;
   const bool model_sure = result.p_correct >= params.decision.accept_p_correct;
-  const double lower_walls = lower_wall_agreement(evidence);
-  if (evidence.agreement >= params.min_agreement && lower_walls > params.gate_max_lower_walls && !model_sure) {
-    return "the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
-           format_double(params.min_agreement) + ") and their walls agree both ways (the lower " +
-           format_fixed(lower_walls, 3) + " > gate_max_lower_walls " + format_double(params.gate_max_lower_walls) +
-           "), where the calibrated model judges alone, and it is not sure enough: p_correct " +
-           format_fixed(result.p_correct, 3) + " < accept_p_correct " + format_double(params.decision.accept_p_correct) +
-           " (alike buildings agree like this too)";
-  }
   if (evidence.agreement < params.min_agreement && !model_sure) {
     return "the maps agree too little under the best transform to be the same building: agreement " +
            format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(params.min_agreement) +
@@ -49,6 +40,15 @@ inline std::string refusal(const MatchResult& result, const MatcherParams& param
            format_fixed(evidence.forward_wall_agreement, 3) + ", free-space IoU " + format_fixed(evidence.free_iou, 3) +
            "; p_correct " + format_fixed(result.p_correct, 3) + " < accept_p_correct " +
            format_double(params.decision.accept_p_correct) + ")";
+  }
+  // Agreement enough, but the walls agree both ways too: the gate is closed, the model decides.
+  if (evidence.agreement >= params.min_agreement && !passes_agreement_gate(evidence, params) && !model_sure) {
+    return "the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
+           format_double(params.min_agreement) + ") and their walls agree both ways (the lower " +
+           format_fixed(lower_wall_agreement(evidence), 3) + " > gate_max_lower_walls " +
+           format_double(params.gate_max_lower_walls) + "), where the calibrated model judges alone, and it is not sure " +
+           "enough: p_correct " + format_fixed(result.p_correct, 3) + " < accept_p_correct " +
+           format_double(params.decision.accept_p_correct) + " (alike buildings agree like this too)";
   }
   if (result.p_correct < params.decision.min_p_correct) {
     return "the answer is too likely wrong: p_correct " + format_fixed(result.p_correct, 3) + " < min_p_correct " +
