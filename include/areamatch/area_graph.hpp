@@ -64,8 +64,15 @@ struct GridInfo {
   double resolution = 0.05;
   Pose2 origin{};
 
+  /// The frame of `grid`.
+  static GridInfo of(const OccupancyGrid& grid) { return {grid.width(), grid.height(), grid.resolution(), grid.origin()}; }
+
   /// Continuous pixel coordinates (col, row) → world metres, as `OccupancyGrid::world_from_pixel`.
   Eigen::Affine2d world_from_pixel() const { return detail::world_from_pixel(height, resolution, origin); }
+
+  friend bool operator==(const GridInfo& a, const GridInfo& b) {
+    return a.width == b.width && a.height == b.height && a.resolution == b.resolution && a.origin == b.origin;
+  }
 };
 
 /// Areas and passages of one map, with a label per cell.

@@ -290,12 +290,11 @@ class Matcher {
 
   /// Segments `grid`; with `params.threads` ≥ 2, builds what of its match data needs only the
   /// cells (`detail::grid_only_data`) into `from_grid` on a second thread meanwhile. Errors: the
-  /// segmentation's first, as on one thread.
+  /// segmentation's first, as on one thread. The callers have validated `params`.
   AreaGraph segment_beside_grid_data(const OccupancyGrid& grid, std::optional<detail::GridOnlyData>& from_grid) const {
     // A grid the segmenter refuses outright is not scanned beside it.
     const long long cells = static_cast<long long>(grid.width()) * grid.height();
     if (detail::resolved_threads(params.threads) < 2 || grid.empty() || cells > max_grid_cells) return segmenter.segment(grid);
-    params.validate();
     AreaGraph graph;
     detail::for_each_index(2, params.threads, [&](std::size_t i) {
       if (i == 0) graph = segmenter.segment(grid);

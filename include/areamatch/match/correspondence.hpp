@@ -64,14 +64,7 @@ namespace detail {
 inline std::vector<std::vector<Eigen::Vector2d>> area_wall_points(const AreaGraph& graph, const std::vector<std::size_t>& free_edge,
                                                                   double spacing_m) {
   std::vector<std::vector<Eigen::Vector2d>> out(graph.areas.size());
-  const PixelBounds bounds = label_bounds(graph, 0);
-  const auto width = static_cast<std::size_t>(graph.grid.width);
-  std::vector<std::size_t> within;
-  within.reserve(free_edge.size());
-  for (const std::size_t i : free_edge) {
-    const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
-    if (x >= bounds.col0 && x < bounds.col1 && y >= bounds.row0 && y < bounds.row1) within.push_back(i);
-  }
+  const std::vector<std::size_t> within = detail::cells_within(free_edge, label_bounds(graph, 0), graph.grid.width);
   detail::for_each_edge_cell(graph.grid, within, spacing_m, [&](std::size_t i, const Eigen::Vector2d& p) {
     const int label = graph.labels[i];
     if (label < 0) return false;  // free but in no area: not this function's, leave the square

@@ -113,8 +113,6 @@ struct GridOnlyData {
   OccupiedWalls occupied;
 };
 
-inline GridInfo grid_info(const OccupancyGrid& grid) { return {grid.width(), grid.height(), grid.resolution(), grid.origin()}; }
-
 inline OccupiedWalls map_occupied_walls(const OccupancyGrid& grid, const GridInfo& info, const MatcherParams& params) {
   return occupied_walls(grid, info, params.occupied_point_spacing_m, params.refinement.lookup_cell_m,
                         params.occupied_wall_distance_m, params.occupied_wall_context_m);
@@ -122,7 +120,7 @@ inline OccupiedWalls map_occupied_walls(const OccupancyGrid& grid, const GridInf
 
 inline GridOnlyData grid_only_data(const OccupancyGrid& grid, const MatcherParams& params) {
   GridOnlyData out;
-  out.grid = grid_info(grid);
+  out.grid = GridInfo::of(grid);
   const auto& cells = grid.cells();
   out.free_edge = edge_cells(out.grid, PixelBounds{0, 0, grid.width(), grid.height()},
                              [&](std::size_t i) { return cells[i] == CellState::free; });
@@ -146,19 +144,10 @@ void build_edge_data(MapData<Descriptors>& d, const OccupancyGrid& grid, const A
                      bool normals, const GridOnlyData* from_grid) {
   const RefineParams& r = params.refinement;
   const GridInfo& g = graph.grid;
-  if (from_grid && !(from_grid->grid.width == g.width && from_grid->grid.height == g.height &&
-                     from_grid->grid.resolution == g.resolution && from_grid->grid.origin == g.origin)) {
-    from_grid = nullptr;
-  }
-  if (from_grid) {
+  if (from_grid && from_grid->grid == g) {
     // `edge_cells` within the areas' extent are the whole grid's edge cells inside it (a cell's
     // neighbours count wherever they lie), in the same scan order.
-    const PixelBounds b = label_bounds(graph);
-    const auto width = static_cast<std::size_t>(g.width);
-    for (const std::size_t i : from_grid->free_edge) {
-      const int x = static_cast<int>(i % width), y = static_cast<int>(i / width);
-      if (x >= b.col0 && x < b.col1 && y >= b.row0 && y < b.row1) d.free_edge.push_back(i);
-    }
+    d.free_edge = cells_within(from_grid->free_edge, label_bounds(graph), g.width);
     d.occupied = from_grid->occupied;
   } else {
     d.free_edge = free_edge_cells(grid, graph);  // found once: thinned for the points, the lookup, the rooms' walls

@@ -24,7 +24,24 @@ namespace areamatch {
 struct PixelBounds {
   int col0 = 0, row0 = 0, col1 = 0, row1 = 0;
   bool empty() const { return col1 <= col0 || row1 <= row0; }
+  bool contains(int col, int row) const { return col >= col0 && col < col1 && row >= row0 && row < row1; }
 };
+
+namespace detail {
+
+/// The row-major cell indices of `cells` (of a grid `width` cells wide) that lie within `bounds`,
+/// in their order.
+inline std::vector<std::size_t> cells_within(const std::vector<std::size_t>& cells, const PixelBounds& bounds, int width) {
+  const auto w = static_cast<std::size_t>(width);
+  std::vector<std::size_t> within;
+  within.reserve(cells.size());
+  for (const std::size_t i : cells) {
+    if (bounds.contains(static_cast<int>(i % w), static_cast<int>(i / w))) within.push_back(i);
+  }
+  return within;
+}
+
+}  // namespace detail
 
 /// The pixels that can hold an area: the envelope of the area polygons, grown by `margin` pixels
 /// and clipped to the grid. Scans over the labels stay inside it, so a building in a corner of a

@@ -609,7 +609,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   const std::size_t N = static_cast<std::size_t>(W) * H;
   const double res = grid.resolution();
   AreaGraph graph;
-  graph.grid = {grid.width(), grid.height(), res, grid.origin()};
+  graph.grid = GridInfo::of(grid);
   if (N == 0) {
     graph.labels.assign(grid.cells().size(), -1);
     return graph;
