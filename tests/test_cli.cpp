@@ -220,7 +220,8 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
   for (const std::string& bad : {std::string("--source-resolution 0"), std::string("--dest-resolution -1"),
                                  std::string("--source-resolution nan"), std::string("--dest-resolution abc"),
-                                 std::string("--door-width 1 --source-door-width 1"), std::string("--k 0")}) {
+                                 std::string("--door-width 1 --source-door-width 1"), std::string("--k 0"),
+                                 std::string("--gate-max-lower-walls -1")}) {
     const Run r = run("match " + pair + " " + bad);
     CHECK_MESSAGE(r.status == 2, bad);
     CHECK_MESSAGE(!r.out.empty(), bad);
@@ -234,6 +235,16 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   CHECK(none.status == 1);
   CHECK(none.out.find("\"ok\": false") != std::string::npos);
   CHECK(none.out.find("no areas") != std::string::npos);
+  // Another building's layout, which the model doubts: at --min-agreement 0 the agreement accepts
+  // it alone only where the lower wall agreement is at most --gate-max-lower-walls (0: nowhere; above
+  // 1: always).
+  const std::string other = areamatch_test::temp_dir() + "/match_bad_other";
+  REQUIRE(run("generate " + other + " --seed 1234 --width 24 --height 26").status == 0);
+  const std::string cross = dir + "/robot.yaml " + other + "/layout.yaml --min-agreement 0";
+  const Run gated = run("match " + cross + " --gate-max-lower-walls 0");
+  CHECK(gated.status == 1);
+  CHECK(gated.out.find("gate_max_lower_walls") != std::string::npos);
+  CHECK(run("match " + cross + " --gate-max-lower-walls 2").status == 0);
 }
 
 TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth") {

@@ -402,6 +402,8 @@ const char* kMatchHelp =
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A       reject when the maps agree less than A under the best transform: not the\n"
     "                          same building (default 0.835; 0 always answers; see docs/evaluation.md)\n"
+    "  --gate-max-lower-walls W  at or above --min-agreement, accept on the agreement alone only where the\n"
+    "                          lower of the two wall agreements is at most W (default 0.7; above 1: always)\n"
     "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
     "                          per core); the same result for any N\n"
     "  --json                  print exactly one JSON object on stdout\n"
@@ -414,7 +416,8 @@ const char* kMatchHelp =
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"allow-reflection", "paper", "json", "estimate-scale", "help"},
                   {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
-                   "min-score", "min-agreement", "min-p-correct", "png", "svg", "labels", "threads"});
+                   "min-score", "min-agreement", "gate-max-lower-walls", "min-p-correct", "png", "svg", "labels",
+                   "threads"});
   if (args.flag("help")) {
     std::cout << kMatchHelp;
     return 0;
@@ -433,6 +436,7 @@ int run_match(const std::vector<std::string>& tokens) {
   if (const auto k = args.integer("k", 1, 1000)) options.k = static_cast<std::size_t>(*k);
   options.min_score = args.number("min-score", false, true);
   options.min_agreement = args.number("min-agreement", false, true);
+  options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
   options.min_p_correct = args.number("min-p-correct", false, true);
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
@@ -509,14 +513,15 @@ const char* kMergeHelp =
     "  --no-same-side       use the accepted matches' transforms as they are (default: each refined by\n"
     "                       ICP that pairs walls only with walls facing the same way)\n"
     "  --threads N          match N pairs at once (default 2; 0: one per core); same results for any N\n"
-    "  --min-agreement A    accept a match when the maps agree at least A (default 0.835)\n"
+    "  --min-agreement A    accept a match when the maps agree at least A (default 0.835) and the lower\n"
+    "                       of the two wall agreements is at most --gate-max-lower-walls W (default 0.7)\n"
     "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
     "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
 
 int run_merge(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "help"},
                   {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
-                   "min-p-correct", "threads"});
+                   "gate-max-lower-walls", "min-p-correct", "threads"});
   if (args.flag("help")) {
     std::cout << kMergeHelp;
     return 0;
@@ -553,6 +558,7 @@ int run_merge(const std::vector<std::string>& tokens) {
   if (const auto door = args.number("door-width", true)) matcher.segmenter.params.with_door_width(*door);
   matcher.params.allow_reflection = args.flag("allow-reflection");
   if (const auto a = args.number("min-agreement", false, true)) matcher.params.min_agreement = *a;
+  if (const auto w = args.number("gate-max-lower-walls", false, true)) matcher.params.gate_max_lower_walls = *w;
   if (const auto p = args.number("min-p-correct", false, true)) matcher.params.decision.min_p_correct = *p;
 
   for (const auto& path : paths) note_assumed_defaults(path, {}, "");
@@ -630,6 +636,8 @@ const char* kEvalHelp =
     "  --min-p-correct P  reject when the calibrated probability of a right answer is below P (default 0: off)\n"
     "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A  reject when the maps agree less than A under the best transform (default 0.835)\n"
+    "  --gate-max-lower-walls W  at or above A, accept on the agreement alone only where the lower wall\n"
+    "                     agreement is at most W (default 0.7; above 1: always)\n"
     "  --estimate-scale   estimate each source's scale (its resolution may be off by 0.5-2x); the summary\n"
     "                     gives the scale errors against the ground truth\n"
     "  --source-resolution R  take every source map as R m/pixel (a pair's source_resolution still wins)\n"
@@ -663,8 +671,8 @@ std::string picture_name(std::size_t index, const std::string& pair_name) {
 
 int run_eval(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "estimate-scale", "help"},
-                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "min-p-correct", "picture-scale",
-                   "source-resolution"});
+                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "gate-max-lower-walls", "min-p-correct",
+                   "picture-scale", "source-resolution"});
   if (args.flag("help")) {
     std::cout << kEvalHelp;
     return 0;
@@ -677,6 +685,7 @@ int run_eval(const std::vector<std::string>& tokens) {
   if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
   options.matching.min_score = args.number("min-score", false, true);
   options.matching.min_agreement = args.number("min-agreement", false, true);
+  options.matching.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
   options.matching.min_p_correct = args.number("min-p-correct", false, true);
   options.matching.estimate_scale = args.flag("estimate-scale");
   options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);

@@ -7,6 +7,7 @@ from ._core import (FREE as FREE, OCCUPIED as OCCUPIED, UNKNOWN as UNKNOWN, Area
                     match as match, segment as segment)
 
 def merge(maps: Sequence[Map], *, reference: int = ..., door_width: Optional[float] = ..., allow_reflection: bool = ...,
-          min_agreement: Optional[float] = ..., min_p_correct: Optional[float] = ..., resolution: Optional[float] = ...,
+          min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
+          min_p_correct: Optional[float] = ..., resolution: Optional[float] = ...,
           wall_share: float = ..., max_residual: float = ..., until_connected: bool = ..., same_side: bool = ..., threads: int = ...,
           names: Optional[Sequence[str]] = ..., build_merged_map: bool = ...) -> MergeResult: ...

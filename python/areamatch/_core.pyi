@@ -111,8 +111,8 @@ class Result:
 def match(source: Map, dest: Map, *, allow_reflection: bool = ..., estimate_scale: bool = ...,
           door_width: Optional[float] = ..., source_door_width: Optional[float] = ...,
           dest_door_width: Optional[float] = ..., k: Optional[int] = ..., min_score: Optional[float] = ...,
-          min_agreement: Optional[float] = ..., min_p_correct: Optional[float] = ..., paper: bool = ...,
-          threads: int = ...) -> Result: ...
+          min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
+          min_p_correct: Optional[float] = ..., paper: bool = ..., threads: int = ...) -> Result: ...
 
 class PreparedMap:
     map: Map
@@ -133,7 +133,8 @@ class MergeResult:
 class Matcher:
     def __init__(self, *, door_width: Optional[float] = ..., allow_reflection: bool = ..., k: Optional[int] = ...,
                  min_score: Optional[float] = ..., min_agreement: Optional[float] = ...,
-                 min_p_correct: Optional[float] = ..., threads: int = ...) -> None: ...
+                 gate_max_lower_walls: Optional[float] = ..., min_p_correct: Optional[float] = ...,
+                 threads: int = ...) -> None: ...
     def prepare(self, map: Map) -> PreparedMap: ...
     def prepare_all(self, maps: Sequence[Map], threads: int = ...) -> List[PreparedMap]: ...
     @overload

@@ -60,6 +60,18 @@ def test_match_rejects_another_building(robot):
     assert not result.ok and result.reason
 
 
+def test_the_agreement_gate_is_configurable(robot):
+    other = areamatch.synthetic.generate_building(1234, width_m=24.0, height_m=26.0).layout
+    # At min_agreement 0 the gate still needs one map's walls largely unexplained by the other's
+    # (gate_max_lower_walls, default 0.7); above 1 it opens whatever the walls.
+    gated = areamatch.match(robot.map, other, min_agreement=0.0)
+    assert not gated.ok and "gate_max_lower_walls" in gated.reason
+    assert areamatch.match(robot.map, other, min_agreement=0.0, gate_max_lower_walls=2.0).ok
+    assert areamatch.Matcher(min_agreement=0.0, gate_max_lower_walls=2.0).match(robot.map, other).ok
+    with pytest.raises(ValueError, match="gate_max_lower_walls"):
+        areamatch.match(robot.map, other, gate_max_lower_walls=-1.0)
+
+
 def test_match_without_areas_is_a_rejection_not_a_crash(building):
     walls = areamatch.Map.from_array(np.zeros((50, 50), np.uint8), 0.05)
     result = areamatch.match(walls, building.layout)

@@ -39,6 +39,9 @@ struct MapPairOptions {
   std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
   std::optional<double> min_score;            ///< reject below this whole-map score
   std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
+  /// the agreement accepts alone only where the lower wall agreement is at most this
+  /// (`MatcherParams::gate_max_lower_walls`; above 1: wherever)
+  std::optional<double> gate_max_lower_walls;
   std::optional<double> min_p_correct;        ///< reject below this p_correct (match/decision.hpp)
   bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
   /// Load and segment the two maps side by side on this many threads (and build their match data
@@ -81,6 +84,7 @@ inline void apply_match_options(MatcherParams& params, const MapPairOptions& opt
   if (options.k) params.k = *options.k;
   if (options.min_score) params.min_score = *options.min_score;
   if (options.min_agreement) params.min_agreement = *options.min_agreement;
+  if (options.gate_max_lower_walls) params.gate_max_lower_walls = *options.gate_max_lower_walls;
   if (options.min_p_correct) params.decision.min_p_correct = *options.min_p_correct;
 }
 
