@@ -477,11 +477,12 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
   if (same_side && source_sides->size() != source_points.size()) {
     throw parameter_error("refine_icp: one free side per source point");
   }
+  // Small, because trimming moves every match: the destination point by address (its normal,
+  // for point-to-line, looked up from it when summing).
   struct Match {
     double distance2;
     Eigen::Vector2d from;  // F·scale·x, the source point before rotation
-    Eigen::Vector2d to;
-    Eigen::Vector2d normal;  // the destination's, at `to` (point-to-line only)
+    const Eigen::Vector2d* to;
   };
   const bool point_to_line = params.point_to_line && dest.has_normals() && !params.estimate_scale;
   std::vector<Match> matches;
@@ -498,7 +499,7 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         const Eigen::Vector2d* d = same_side ? dest.nearest_facing(y, side_turn * (*source_sides)[i]) : dest.nearest(y);
         if (!d) continue;
         const double d2 = (*d - y).squaredNorm();
-        if (d2 <= gate * gate) matches.push_back({d2, from, *d, point_to_line ? dest.normal_at(d) : Eigen::Vector2d::Zero()});
+        if (d2 <= gate * gate) matches.push_back({d2, from, d});
       }
       if (matches.size() < 3) return T;
       const std::size_t keep = std::max<std::size_t>(3, static_cast<std::size_t>(params.keep_fraction * matches.size()));
@@ -518,8 +519,9 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         double a00 = 0.0, a01 = 0.0, a02 = 0.0, a11 = 0.0, a12 = 0.0, a22 = 0.0, b0 = 0.0, b1 = 0.0, b2 = 0.0;
         for (const auto& m : matches) {
           const Eigen::Vector2d y = rotation * m.from + T.translation, q = y - c;
-          const double j0 = q.x() * m.normal.y() - q.y() * m.normal.x(), j1 = m.normal.x(), j2 = m.normal.y();
-          const double residual = (y - m.to).dot(m.normal);
+          const Eigen::Vector2d& normal = dest.normal_at(m.to);
+          const double j0 = q.x() * normal.y() - q.y() * normal.x(), j1 = normal.x(), j2 = normal.y();
+          const double residual = (y - *m.to).dot(normal);
           a00 += j0 * j0;
           a01 += j0 * j1;
           a02 += j0 * j2;
@@ -545,13 +547,13 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
       Eigen::Vector2d mean_from = Eigen::Vector2d::Zero(), mean_to = Eigen::Vector2d::Zero();
       for (const auto& m : matches) {
         mean_from += m.from;
-        mean_to += m.to;
+        mean_to += *m.to;
       }
       mean_from /= static_cast<double>(matches.size());
       mean_to /= static_cast<double>(matches.size());
       double dot = 0.0, cross = 0.0;
       for (const auto& m : matches) {
-        const Eigen::Vector2d a = m.from - mean_from, b = m.to - mean_to;
+        const Eigen::Vector2d a = m.from - mean_from, b = *m.to - mean_to;
         dot += a.dot(b);
         cross += a.x() * b.y() - a.y() * b.x();
       }
@@ -563,7 +565,7 @@ inline Similarity2 refine_icp(const std::vector<Eigen::Vector2d>& source_points,
         double along = 0.0, norm2 = 0.0;
         for (const auto& m : matches) {
           const Eigen::Vector2d a = m.from - mean_from;
-          along += (m.to - mean_to).dot(turn * a);
+          along += (*m.to - mean_to).dot(turn * a);
           norm2 += a.squaredNorm();
         }
         if (norm2 > 0.0 && along > 0.0) k = std::clamp(along / norm2, 1.0 / params.max_scale_step, params.max_scale_step);
