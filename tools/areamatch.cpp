@@ -401,7 +401,8 @@ const char* kMatchHelp =
     "                          (default 0: off; see docs/evaluation.md)\n"
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A       reject when the maps agree less than A under the best transform: not the\n"
-    "                          same building (default 0.835; 0 always answers; see docs/evaluation.md)\n"
+    "                          same building (default 0.835; 0 with --gate-max-lower-walls 2 always answers;\n"
+    "                          see docs/evaluation.md)\n"
     "  --gate-max-lower-walls W  at or above --min-agreement, accept on the agreement alone only where the\n"
     "                          lower of the two wall agreements is at most W (default 0.7; above 1: always)\n"
     "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
@@ -513,8 +514,9 @@ const char* kMergeHelp =
     "  --no-same-side       use the accepted matches' transforms as they are (default: each refined by\n"
     "                       ICP that pairs walls only with walls facing the same way)\n"
     "  --threads N          match N pairs at once (default 2; 0: one per core); same results for any N\n"
-    "  --min-agreement A    accept a match when the maps agree at least A (default 0.835) and the lower\n"
-    "                       of the two wall agreements is at most --gate-max-lower-walls W (default 0.7)\n"
+    "  --min-agreement A    accept a match when the maps agree at least A (default 0.835) ...\n"
+    "  --gate-max-lower-walls W  ... and the lower of the two wall agreements is at most W (default 0.7;\n"
+    "                       above 1: whatever the walls)\n"
     "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
     "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
 
