@@ -50,8 +50,8 @@ MergeResult.timings = _from_dict("timings", "Seconds per step (dict).")
 
 
 def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None,
-          gate_max_lower_walls=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0, until_connected=False, same_side=True, threads=1,
-          names=None, build_merged_map=True):
+          gate_max_lower_walls=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0,
+          until_connected=False, same_side=True, threads=1, names=None, build_merged_map=True):
     """Places several maps of one building in the frame of maps[reference] and fuses them.
 
     As `areamatch merge`: every pair matched (or only until connected), the poses fitted to the

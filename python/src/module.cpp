@@ -489,7 +489,8 @@ PYBIND11_MODULE(_core, m) {
       py::arg("source"), py::arg("dest"), py::kw_only(), py::arg("allow_reflection") = false, py::arg("estimate_scale") = false,
       py::arg("door_width") = py::none(), py::arg("source_door_width") = py::none(), py::arg("dest_door_width") = py::none(),
       py::arg("k") = py::none(), py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
-      py::arg("gate_max_lower_walls") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = 1, release_gil(),
+      py::arg("gate_max_lower_walls") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("paper") = false,
+      py::arg("threads") = 1, release_gil(),
       "Segments both maps and matches source onto dest, as `areamatch match` (same options, same result).");
 
   // ------------------------------------------------------------------ Prepared maps, merging
