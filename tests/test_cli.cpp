@@ -474,6 +474,7 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
            {maps + " " + dir + "/a/../a/robot.yaml", "is given twice"},
            {maps + " --reference " + dir + "/b/robot.yaml", "not one of the maps"},
            {maps + " --wall-share 2", "--wall-share must be in (0, 1]"},
+           {maps + " --gate-max-lower-walls -1", "--gate-max-lower-walls must not be negative"},
            {maps + " --out " + dir + "/merged.pgm", "must name a .yaml file"},
            {maps + " " + dir + "/missing.yaml", "missing.yaml"}}) {
     const std::string& arguments = bad_input.first;  // not a structured binding: the checks' lambdas capture it

@@ -556,12 +556,15 @@ int run_merge(const std::vector<std::string>& tokens) {
   if (args.flag("until-connected")) merge_params.strategy = areamatch::MergeStrategy::until_connected;
   merge_params.refine_same_side = !args.flag("no-same-side");
   merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
+  // The matcher's options as `areamatch match` sets them (its threads stay 1: merging spreads pairs).
+  areamatch::MapPairOptions match_options;
+  match_options.allow_reflection = args.flag("allow-reflection");
+  match_options.min_agreement = args.number("min-agreement", false, true);
+  match_options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
+  match_options.min_p_correct = args.number("min-p-correct", false, true);
   areamatch::Matcher<> matcher;
-  if (const auto door = args.number("door-width", true)) matcher.segmenter.params.with_door_width(*door);
-  matcher.params.allow_reflection = args.flag("allow-reflection");
-  if (const auto a = args.number("min-agreement", false, true)) matcher.params.min_agreement = *a;
-  if (const auto w = args.number("gate-max-lower-walls", false, true)) matcher.params.gate_max_lower_walls = *w;
-  if (const auto p = args.number("min-p-correct", false, true)) matcher.params.decision.min_p_correct = *p;
+  matcher.segmenter = areamatch::detail::segmenter_with_door(matcher.segmenter, args.number("door-width", true));
+  areamatch::detail::apply_match_options(matcher.params, match_options);
 
   for (const auto& path : paths) note_assumed_defaults(path, {}, "");
   using clock = std::chrono::steady_clock;
