@@ -11,9 +11,12 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <atomic>
+#include <chrono>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <thread>
 #include <vector>
 
 using namespace areamatch;
@@ -105,6 +108,47 @@ TEST_CASE("any thread count gives the same answer, bit for bit") {
       CHECK(without_timings(matcher.match(matcher.prepare(c.robot.grid), layout)) == onto);
     }
   }
+}
+
+TEST_CASE("two maps made side by side: the same answer whichever is made first, errors in map order") {
+  // match_side_by_side builds the data of the map made first while the other is still being made.
+  // Each order is forced here (the other map waits, at most 5 s, for its turn).
+  const auto c = areamatch_test::synthetic_case(13);
+  Matcher<> matcher;
+  matcher.params.allow_reflection = true;
+  const std::string one = without_timings(matcher.match(c.robot.grid, c.building.layout));
+  matcher.params.threads = 2;
+  for (const std::size_t first : {0u, 1u}) {
+    OccupancyGrid grids[2];
+    AreaGraph graphs[2];
+    std::atomic<bool> first_made{false};
+    const MatchResult r = matcher.match_side_by_side(grids[0], graphs[0], grids[1], graphs[1], [&](std::size_t i) {
+      if (i != first) {
+        const auto give_up = std::chrono::steady_clock::now() + std::chrono::seconds(5);
+        while (!first_made && std::chrono::steady_clock::now() < give_up) std::this_thread::yield();
+      }
+      grids[i] = i == 0 ? c.robot.grid : c.building.layout;
+      graphs[i] = matcher.segmenter.segment(grids[i]);
+      if (i == first) first_made = true;
+    });
+    INFO("map made first: " << first);
+    CHECK(without_timings(r) == one);
+    CHECK(r.timings.prepare_s > 0.0);
+  }
+  // Map 0's error before map 1's, and both before the match's (invalid parameters).
+  matcher.params.k = 0;
+  OccupancyGrid grids[2];
+  AreaGraph graphs[2];
+  auto failing = [&](std::size_t failing_map) {
+    return [&, failing_map](std::size_t i) {
+      if (i == failing_map || failing_map == 2) throw io_error("map " + std::to_string(i) + " unreadable");
+      grids[i] = c.building.layout;
+      graphs[i] = matcher.segmenter.segment(grids[i]);
+    };
+  };
+  CHECK_THROWS_WITH_AS(matcher.match_side_by_side(grids[0], graphs[0], grids[1], graphs[1], failing(2)), "map 0 unreadable", io_error);
+  CHECK_THROWS_WITH_AS(matcher.match_side_by_side(grids[0], graphs[0], grids[1], graphs[1], failing(1)), "map 1 unreadable", io_error);
+  CHECK_THROWS_AS(matcher.match_side_by_side(grids[0], graphs[0], grids[1], graphs[1], failing(3)), parameter_error);
 }
 
 TEST_CASE("bad source grids onto a prepared map fail the same on one thread and on two") {

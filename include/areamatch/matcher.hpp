@@ -60,6 +60,8 @@
 #include "segmenter.hpp"
 #include "transform.hpp"
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <optional>
@@ -224,18 +226,62 @@ class Matcher {
     // The two maps are segmented on two threads with `params.threads` ≥ 2 (same graphs either way).
     AreaGraph graphs[2];
     double segment_s[2] = {0.0, 0.0};
-    detail::for_each_index(2, params.threads, [&](std::size_t i) {
+    MatchResult result = match_side_by_side(source, graphs[0], dest, graphs[1], [&](std::size_t i) {
       const auto map_start = std::chrono::steady_clock::now();
       graphs[i] = segmenter.segment(i == 0 ? source : dest);
       segment_s[i] = detail::seconds_since(map_start);
     });
-    const AreaGraph& source_graph = graphs[0];
-    const AreaGraph& dest_graph = graphs[1];
-    const double segment_source_s = segment_s[0], segment_dest_s = segment_s[1];
-    MatchResult result = match(source, source_graph, dest, dest_graph);
-    result.timings.segment_source_s = segment_source_s;
-    result.timings.segment_dest_s = segment_dest_s;
+    result.timings.segment_source_s = segment_s[0];
+    result.timings.segment_dest_s = segment_s[1];
     result.timings.total_s = detail::seconds_since(start);
+    return result;
+  }
+
+  /// Matches two maps that `make_map(i)` makes — it fills `source` and `source_graph` for i = 0,
+  /// `dest` and `dest_graph` for i = 1 (loads and segments them, say) — side by side with
+  /// `params.threads` ≥ 2: the map made first has its match data built while the other is still
+  /// being made, and the other's is then built on both threads. The same result as making both and
+  /// calling `match(source, source_graph, dest, dest_graph)`; errors: map 0's first, then map 1's,
+  /// then the match's. `timings.match_s`: from when both maps are made to the end.
+  template <class MakeMap>
+  MatchResult match_side_by_side(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
+                                 const AreaGraph& dest_graph, const MakeMap& make_map) const {
+    // Invalid parameters are reported by the match below, after the maps' own errors.
+    const bool build_early = detail::resolved_threads(params.threads) >= 2 && !params.estimate_scale && [&] {
+      try {
+        params.validate();
+        return true;
+      } catch (const parameter_error&) {
+        return false;
+      }
+    }();
+    std::optional<MapData> early;  // the data of the map made first
+    std::size_t early_side = 2;    // which map that is; 2: none
+    double early_s = 0.0;
+    std::atomic<bool> one_made{false};
+    std::chrono::steady_clock::time_point made_at[2];
+    detail::for_each_index(2, params.threads, [&](std::size_t i) {
+      make_map(i);
+      made_at[i] = std::chrono::steady_clock::now();
+      if (!build_early || one_made.exchange(true)) return;  // the second map: the match builds its data
+      const OccupancyGrid& grid = i == 0 ? source : dest;
+      const AreaGraph& graph = i == 0 ? source_graph : dest_graph;
+      if (!graph_fits(grid, graph) || graph.areas.empty() || graph.areas.size() > params.max_areas) return;
+      early = detail::build_map_data(grid, graph, features, params, i == 1);  // normals: the destination's, for ICP
+      early_side = i;
+      early_s = detail::seconds_since(made_at[i]);
+    });
+    const auto both_made = std::max(made_at[0], made_at[1]);
+    if (params.estimate_scale) {
+      throw parameter_error("Matcher::match_side_by_side: estimate_scale re-segments the source at each candidate scale; "
+                            "use match_estimating_scale");
+    }
+    check_graph(source, source_graph, "source");
+    check_graph(dest, dest_graph, "destination");
+    MatchResult result = match_graphs(MapView{&source, &source_graph, early_side == 0 ? &*early : nullptr},
+                                      MapView{&dest, &dest_graph, early_side == 1 ? &*early : nullptr});
+    result.timings.prepare_s += early_s;
+    result.timings.match_s = detail::seconds_since(both_made);
     return result;
   }
 
@@ -311,9 +357,12 @@ class Matcher {
     }
   }
 
+  static bool graph_fits(const OccupancyGrid& grid, const AreaGraph& graph) {
+    return graph.grid.width == grid.width() && graph.grid.height == grid.height() && graph.labels.size() == grid.cells().size();
+  }
+
   static void check_graph(const OccupancyGrid& grid, const AreaGraph& graph, const char* which) {
-    if (graph.grid.width != grid.width() || graph.grid.height != grid.height() ||
-        graph.labels.size() != grid.cells().size()) {
+    if (!graph_fits(grid, graph)) {
       throw parameter_error(std::string("Matcher::match: the ") + which + " Area Graph was not made from the " + which +
                             " grid (sizes differ)");
     }
@@ -362,11 +411,12 @@ class Matcher {
     if (source.areas.empty()) return finish("the source map has no areas: " + source.reason);
     if (dest.areas.empty()) return finish("the destination map has no areas: " + dest.reason);
 
-    // What each map gives alone: prepared beforehand, or built now (the destination's lookup
-    // with normals, for point-to-line ICP onto it). Both built here: one thread each. Only the
-    // source (a grid onto a prepared map) with threads to spare: its areas' part, then the pairs,
-    // hypotheses and clusters (which read only that) on one thread, beside its cells' part (the
-    // edge lookup: the longest piece) on another. The same result either way.
+    // What each map gives alone: prepared beforehand (or while the other map was segmented), or
+    // built now — the destination's lookup with normals, for point-to-line ICP onto it. Both
+    // built here: one thread each. Only the source, with threads to spare: its areas' part, then
+    // the pairs, hypotheses and clusters (which read only that) on one thread, beside its cells'
+    // part (the edge lookup: the longest piece) on another. Only the destination: its two parts
+    // side by side. The same result either way.
     auto stage = std::chrono::steady_clock::now();
     std::optional<MapData> source_own, dest_own;
     std::vector<AreaPair> pairs;
@@ -406,12 +456,16 @@ class Matcher {
       });
       result.timings.prepare_s = part_s[0] + part_s[1];
     } else {
-      detail::for_each_index(2, params.threads, [&](std::size_t i) {
-        if (i == 0 && !source_map.data) {
-          source_own = detail::build_map_data(*source_map.grid, source, features, params, false, 1, source_grid_data);
-        }
-        if (i == 1 && !dest_map.data) dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true);
-      });
+      if (!source_map.data && !dest_map.data) {
+        detail::for_each_index(2, params.threads, [&](std::size_t i) {
+          if (i == 0) source_own = detail::build_map_data(*source_map.grid, source, features, params, false, 1, source_grid_data);
+          else dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true);
+        });
+      } else if (!source_map.data) {
+        source_own = detail::build_map_data(*source_map.grid, source, features, params, false, params.threads, source_grid_data);
+      } else if (!dest_map.data) {
+        dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true, params.threads);
+      }
       if (source_own || dest_own) result.timings.prepare_s = detail::seconds_since(stage);
       find_clusters(source_map.data ? *source_map.data : *source_own, dest_map.data ? *dest_map.data : *dest_own,
                     params.threads);

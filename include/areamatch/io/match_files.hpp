@@ -88,29 +88,20 @@ inline void apply_match_options(MatcherParams& params, const MapPairOptions& opt
   if (options.min_p_correct) params.decision.min_p_correct = *options.min_p_correct;
 }
 
-template <class M>
-MatchResult configured_match(M matcher, const MapPairOptions& options, MapPairRun& run) {
-  apply_match_options(matcher.params, options);
-  if (options.estimate_scale) {
-    matcher.params.estimate_scale = true;
-    matcher.segmenter = segmenter_with_door(matcher.segmenter, options.source_door_width_m);
-    return matcher.match_estimating_scale(run.source, run.dest, run.dest_graph, &run.source_graph);
-  }
-  return matcher.match(run.source, run.source_graph, run.dest, run.dest_graph);
-}
-
 /// One end-to-end run: `get_grid(0)` (the source) and `get_grid(1)` (the destination) are
-/// fetched and segmented each on its own (side by side with `threads` ≥ 2; with estimate_scale
-/// the source is segmented at each candidate scale, inside the match), then matched.
-/// `result.timings.total_s` counts from the first fetch. `matcher` is copied: its segmenter
-/// (with the door widths) segments both maps, its parameters with `options` applied match them.
+/// fetched and segmented each on its own (side by side with `threads` ≥ 2, the map segmented
+/// first having its match data built meanwhile: `Matcher::match_side_by_side`; with
+/// estimate_scale the source is segmented at each candidate scale, inside the match), then
+/// matched. `result.timings.total_s` counts from the first fetch. `matcher` is copied: its
+/// segmenter (with the door widths) segments both maps, its parameters with `options` applied
+/// match them.
 template <class M, class GetGrid>
 MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid&& get_grid) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   MapPairRun run;
   double segment_s[2] = {0.0, 0.0};
-  for_each_index(2, options.threads, [&](std::size_t i) {
+  auto make_map = [&](std::size_t i) {
     const bool source = i == 0;
     OccupancyGrid& grid = source ? run.source : run.dest;
     grid = get_grid(i);
@@ -119,19 +110,24 @@ MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid
     (source ? run.source_graph : run.dest_graph) =
         segmenter_with_door(matcher.segmenter, source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
     segment_s[i] = seconds_since(segment_start);
-  });
-  const auto match_start = clock::now();
-  run.result = configured_match(matcher, options, run);
-  const auto end = clock::now();
+  };
+  M configured = matcher;
+  apply_match_options(configured.params, options);
+  if (options.estimate_scale) {
+    for_each_index(2, options.threads, make_map);
+    const auto match_start = clock::now();
+    configured.params.estimate_scale = true;
+    configured.segmenter = segmenter_with_door(configured.segmenter, options.source_door_width_m);
+    run.result = configured.match_estimating_scale(run.source, run.dest, run.dest_graph, &run.source_graph);
+    // segment_source_s from the match, which segments the source
+    run.result.timings.match_s = seconds_since(match_start) - run.result.timings.segment_source_s;
+  } else {
+    run.result = configured.match_side_by_side(run.source, run.source_graph, run.dest, run.dest_graph, make_map);
+    run.result.timings.segment_source_s = segment_s[0];
+  }
   MatchTimings& t = run.result.timings;
   t.segment_dest_s = segment_s[1];
-  if (options.estimate_scale) {
-    t.match_s = seconds_between(match_start, end) - t.segment_source_s;  // segment_source_s from the match
-  } else {
-    t.segment_source_s = segment_s[0];
-    t.match_s = seconds_between(match_start, end);
-  }
-  t.total_s = seconds_between(start, end);
+  t.total_s = seconds_since(start);
   return run;
 }
 
