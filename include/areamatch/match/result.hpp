@@ -81,13 +81,14 @@ struct MatchTimings {
   double segment_source_s = 0.0;
   double segment_dest_s = 0.0;
   /// What matching builds from each map alone (descriptors, rasters, wall direction, free-space
-  /// edges and lookups); 0 for maps prepared beforehand (`Matcher::prepare`)
+  /// edges and lookups); 0 for maps prepared beforehand (`Matcher::prepare`). On two threads
+  /// part of it overlaps a segmentation (`Matcher::match_side_by_side`): then a sum of pieces
   double prepare_s = 0.0;
   double features_s = 0.0;     ///< cost matrix, mutual pairs
   double hypotheses_s = 0.0;   ///< hypotheses with their overlap
   double clustering_s = 0.0;
   double selection_s = 0.0;    ///< verification (or the paper's Σ OP) and refinement
-  double match_s = 0.0;        ///< everything after segmentation
+  double match_s = 0.0;        ///< everything after segmentation (after both maps', when side by side)
   double total_s = 0.0;
 };
 
