@@ -272,12 +272,7 @@ class Matcher {
       early_s = detail::seconds_since(made_at[i]);
     });
     const auto both_made = std::max(made_at[0], made_at[1]);
-    if (params.estimate_scale) {
-      throw parameter_error("Matcher::match_side_by_side: estimate_scale re-segments the source at each candidate scale; "
-                            "use match_estimating_scale");
-    }
-    check_graph(source, source_graph, "source");
-    check_graph(dest, dest_graph, "destination");
+    check_segmented(source, source_graph, dest, dest_graph);
     MatchResult result = match_graphs(MapView{&source, &source_graph, early_side == 0 ? &*early : nullptr},
                                       MapView{&dest, &dest_graph, early_side == 1 ? &*early : nullptr});
     result.timings.prepare_s += early_s;
@@ -289,12 +284,7 @@ class Matcher {
   /// must come from its grid. Not with `params.estimate_scale` (see `match_estimating_scale`).
   MatchResult match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
                     const AreaGraph& dest_graph) const {
-    if (params.estimate_scale) {
-      throw parameter_error("Matcher::match: estimate_scale re-segments the source at each candidate scale; pass the "
-                            "source grid (match(source, dest) or match_estimating_scale), not its graph");
-    }
-    check_graph(source, source_graph, "source");
-    check_graph(dest, dest_graph, "destination");
+    check_segmented(source, source_graph, dest, dest_graph);
     return match_graphs(MapView{&source, &source_graph, nullptr}, MapView{&dest, &dest_graph, nullptr});
   }
 
@@ -359,6 +349,18 @@ class Matcher {
 
   static bool graph_fits(const OccupancyGrid& grid, const AreaGraph& graph) {
     return graph.grid.width == grid.width() && graph.grid.height == grid.height() && graph.labels.size() == grid.cells().size();
+  }
+
+  /// What matching two maps segmented by the caller needs: no scale to estimate (that segments
+  /// the source itself), and each graph made from its grid.
+  void check_segmented(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
+                       const AreaGraph& dest_graph) const {
+    if (params.estimate_scale) {
+      throw parameter_error("Matcher::match: estimate_scale re-segments the source at each candidate scale; pass the "
+                            "source grid (match(source, dest) or match_estimating_scale), not its graph");
+    }
+    check_graph(source, source_graph, "source");
+    check_graph(dest, dest_graph, "destination");
   }
 
   static void check_graph(const OccupancyGrid& grid, const AreaGraph& graph, const char* which) {
