@@ -46,7 +46,7 @@ const std::vector<JudgedRow>& shared_pair_rows(const std::string& shared) {
   return rows;
 }
 
-/// The shared pairs of different buildings every CI run checks (every 3rd of the 596), judged
+/// The shared pairs of different buildings every CI run checks (every 3rd of the 740), judged
 /// once per process: the rejection test and the decision's cross-validation both use them.
 const std::vector<JudgedRow>& shared_cross_rows(const std::string& shared) {
   static const std::vector<JudgedRow> rows = [&] {
@@ -63,23 +63,42 @@ const std::vector<JudgedRow>& shared_cross_rows(const std::string& shared) {
 
 }  // namespace
 
-TEST_CASE("every non-ambiguous shared pair is matched correctly") {
+/// Known failures (issue 42): the Intel Research Lab's cluttered, bent SLAM map onto its schematic
+/// layout. The transform is right (rotation error under 1 degree, displacement under 0.3 m) but
+/// the decision rejects it. The test checks that both still hold, so that a change that makes
+/// the matcher accept them is noticed here (then take them off this list); a wrong transform
+/// fails as any other pair does.
+const std::set<std::string>& known_rejected_right_answers() {
+  static const std::set<std::string> names = {"intel", "intel_rot123"};
+  return names;
+}
+
+TEST_CASE("every non-ambiguous shared pair is matched correctly (known rejections checked, not skipped)") {
   const std::string shared = areamatch_test::shared_dir();
   if (shared.empty()) return;
   const std::vector<JudgedRow>& rows = shared_pair_rows(shared);
   REQUIRE(!rows.empty());
+  std::size_t known_seen = 0;
   for (const JudgedRow& judged : rows) {
     const ManifestPair& pair = judged.pair;
     const PairEvaluation& row = judged.row;
     REQUIRE(pair.ground_truth);
     REQUIRE_MESSAGE(row.failure.empty(), row.failure);
     const MatchResult& r = row.result;
-    MESSAGE(pair.name << (pair.ambiguous ? " (ambiguous)" : "") << ": " << (row.correct ? "correct" : "WRONG")
-                      << ", rotation error " << row.error->rotation_error_deg << " deg, displacement "
-                      << row.error->mean_displacement_m << " m, confidence " << r.confidence << ", match "
+    const std::string verdict = row.correct ? "correct" : row.transform_correct ? "REJECTED (right transform)" : "WRONG";
+    MESSAGE(pair.name << std::string(pair.ambiguous ? " (ambiguous)" : "") << ": " << verdict << ", rotation error "
+                      << row.error->rotation_error_deg << " deg, displacement " << row.error->mean_displacement_m
+                      << " m, p_correct " << r.p_correct << ", agreement " << r.evidence.agreement << ", match "
                       << 1000.0 * r.timings.match_s << " ms");
+    if (known_rejected_right_answers().count(pair.name)) {
+      ++known_seen;
+      CHECK_MESSAGE(row.transform_correct, pair.name << ": a known rejection whose transform is now wrong");
+      CHECK_MESSAGE(!r.ok, pair.name << ": a known rejection is now accepted: take it off known_rejected_right_answers");
+      continue;
+    }
     if (!pair.ambiguous) CHECK_MESSAGE(row.correct, pair.name);
   }
+  CHECK(known_seen == known_rejected_right_answers().size());  // the list follows the manifest
 }
 
 TEST_CASE("prepared maps give the same results as their grids on every shared pair") {
@@ -97,11 +116,11 @@ TEST_CASE("prepared maps give the same results as their grids on every shared pa
   }
 }
 
-TEST_CASE("pairs of maps of different shared buildings are rejected (every 3rd of the 596)") {
+TEST_CASE("pairs of maps of different shared buildings are rejected (every 3rd of the 740)") {
   const std::string shared = areamatch_test::shared_dir();
   if (shared.empty()) return;
   const Manifest manifest = load_manifest(shared + "/pairs.json");
-  CHECK(cross_building_pairs(manifest).size() == 596);  // 36 maps of 14 buildings
+  CHECK(cross_building_pairs(manifest).size() == 740);  // 40 maps of 15 buildings (the Intel lab's four since 2026-12-04)
   std::size_t tried = 0, rejected = 0;
   for (const JudgedRow& r : shared_cross_rows(shared)) {
     REQUIRE_MESSAGE(r.row.failure.empty(), r.row.failure);
@@ -110,7 +129,7 @@ TEST_CASE("pairs of maps of different shared buildings are rejected (every 3rd o
     if (!r.row.correct) MESSAGE("accepted " << r.pair.name << ": agreement " << r.row.result.evidence.agreement);
   }
   MESSAGE(rejected << " of " << tried << " pairs of different buildings rejected");
-  CHECK(rejected >= tried * 95 / 100);
+  CHECK(rejected * 1000 >= tried * 995);  // >= 99.5 % (issue 42)
 }
 
 TEST_CASE("the manifest reader refuses bad manifests with the pair and field named") {
@@ -198,7 +217,7 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
   for (const ManifestPair& pair : manifest.pairs) {
     const PairEvaluation row = evaluate_pair(pair, manifest.correct_if, plain);
     REQUIRE_MESSAGE(row.failure.empty(), row.failure);
-    MESSAGE(pair.name << ": " << (row.correct ? "correct" : row.transform_correct ? "REJECTED" : "WRONG") << ", p_correct "
+    MESSAGE(pair.name << ": " << std::string(row.correct ? "correct" : row.transform_correct ? "REJECTED" : "WRONG") << ", p_correct "
                       << row.result.p_correct << ", agreement " << row.result.evidence.agreement);
     if (!pair.ambiguous) {
       const bool to_layout = pair.kind == "sensor_to_layout";
