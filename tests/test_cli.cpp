@@ -7,10 +7,12 @@
 #include "test_support.hpp"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
 #include <cstdio>
+#include <sstream>
 #include <string>
 #include <sys/wait.h>
 #include <utility>
@@ -338,6 +340,50 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   const Run one_sided = run("calibrate " + out + "/same/results.csv");
   CHECK(one_sided.status == 2);
   CHECK(one_sided.out.find("right and wrong examples") != std::string::npos);
+}
+
+TEST_CASE("calibrate: real buildings judge, generated ones only train; rates per real building and per modality") {
+  // Four generated buildings; the manifest calls two of them real SLAM-to-layout pairs (the kind
+  // is what tells calibrate a real building from a generated one).
+  const std::string dir = areamatch_test::temp_dir() + "/calibrate_real";
+  REQUIRE(run("generate " + dir + " --count 4 --seed 90 --width 15 --height 11").status == 0);
+  std::string manifest = read_text(dir + "/pairs.json");
+  for (int k = 0; k < 2; ++k) {
+    const auto at = manifest.find("\"kind\": \"synthetic\"");
+    REQUIRE(at != std::string::npos);
+    manifest.replace(at, std::string("\"kind\": \"synthetic\"").size(), "\"kind\": \"slam_to_layout\"");
+  }
+  areamatch_test::write_bytes(dir + "/pairs.json", manifest);
+  const std::string out = areamatch_test::temp_dir() + "/calibrate_real_out";
+  REQUIRE(run("eval " + dir + "/pairs.json --cross-buildings --out " + out, false).status == 0);
+  const Run fit = run("calibrate " + out + "/results.csv", false);
+  INFO(fit.out);
+  REQUIRE(fit.status == 0);
+  CHECK(fit.out.find("4 buildings (2 real, which judge; the others generated, which only train)") != std::string::npos);
+  CHECK(fit.out.find("leave-one-building-out, real buildings:") != std::string::npos);
+  CHECK(fit.out.find(" (generated) | ") != std::string::npos);
+  // Each side's own pairs (right or wrong answers of one building: 2 each) and its pairs of
+  // different buildings (the 4 maps of the two real buildings, each combination once: 4).
+  auto counts = [&](const std::string& title) {
+    const auto at = fit.out.find("\n" + title + " | ");
+    REQUIRE_MESSAGE(at != std::string::npos, title);
+    // The fields after the title: right | false rejects (%) | wrong | accepted | different | accepted (%).
+    const std::string rest = fit.out.substr(at + title.size() + 4, fit.out.find('\n', at + 1) - at - title.size() - 4);
+    std::vector<std::size_t> fields;
+    std::istringstream cells(rest);
+    for (std::string cell; std::getline(cells, cell, '|');) fields.push_back(std::stoul(cell));
+    REQUIRE(fields.size() == 6);
+    return std::array<std::size_t, 2>{fields[0] + fields[2], fields[4]};
+  };
+  CHECK(counts("total, real buildings") == std::array<std::size_t, 2>{2, 4});
+  CHECK(counts("total, generated buildings (they train, they do not judge)") == std::array<std::size_t, 2>{2, 20});
+  CHECK(counts("SLAM map -> layout")[0] == 2);
+  const Run chosen = run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 0.01", false);
+  INFO(chosen.out);
+  REQUIRE(chosen.status == 0);
+  CHECK(chosen.out.find("rules chosen in the 2 folds") != std::string::npos);  // one per real building
+  CHECK(chosen.out.find("nested leave-one-building-out (model and thresholds chosen without the building), real buildings:") !=
+        std::string::npos);
 }
 
 TEST_CASE("generate --style handheld: a partial scan onto a line-drawn layout, matched") {

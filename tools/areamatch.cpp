@@ -773,6 +773,11 @@ const char* kCalibrateHelp =
     "building and in total the false rejects (right answers refused) and false accepts (wrong answers\n"
     "accepted), the same in-sample, the totals of other rules, the coefficients fitted on all rows and\n"
     "a reliability table.\n"
+    "Real buildings judge, generated ones only train: a building with a map of a generated pair\n"
+    "(manifest kind 'synthetic') is generated; the rates are also given per real building and per\n"
+    "modality (the kinds of the two maps, learnt from the manifests' kinds: SLAM map, layout,\n"
+    "furnished layout, hand-held scan), and --choose-rule chooses the thresholds on real buildings'\n"
+    "rows, judged by nested leave-one-real-building-out.\n"
     "Options:\n"
     "  --l2 L             L2 penalty on the weights (default 1)\n"
     "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.85)\n"
@@ -804,11 +809,14 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   const double gate_walls =
       args.number("gate-max-lower-walls", false, true).value_or(areamatch::MatcherParams{}.gate_max_lower_walls);
   std::vector<CalibrationRow> rows;
+  areamatch_cli::MapRoles roles;
   for (const auto& path : args.positional()) {
-    auto more = read_calibration_rows(path);
+    auto more = read_calibration_rows(path, &roles);
     rows.insert(rows.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
   }
   const std::vector<std::string> buildings = assign_buildings(rows);
+  const areamatch_cli::JudgingBuildings judging = areamatch_cli::judging_buildings(rows, buildings.size(), roles);
+  const auto real_buildings = static_cast<std::size_t>(std::count(judging.judges.begin(), judging.judges.end(), 1));
   std::vector<areamatch::DecisionSample> all;
   for (const auto& r : rows) all.push_back(r.sample);
   const areamatch::DecisionParams fitted = areamatch::fit_decision(all, l2, base);
@@ -819,31 +827,33 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   const Rule rule{base.accept_p_correct, gate, gate_walls}, model_half{0.5, 2.0}, gate_alone{2.0, gate, gate_walls};
   std::vector<DecisionCounts> per_building(buildings.size());
   DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
+  std::vector<signed char> cv_accepted(rows.size());
   for (std::size_t i = 0; i < rows.size(); ++i) {
     const CalibrationRow& r = rows[i];
     const bool accepted = rule.accepts(r, predicted[i]);
+    cv_accepted[i] = accepted;
     cv_total.add(r.sample.correct, r.different_buildings, accepted);
     in_sample_total.add(r.sample.correct, r.different_buildings, rule.accepts(r, in_sample[i]));
     cv_model_half.add(r.sample.correct, r.different_buildings, model_half.accepts(r, predicted[i]));
     gate_only.add(r.sample.correct, r.different_buildings, gate_alone.accepts(r, 0.0));
     DecisionCounts::add_per_building(per_building, r, accepted);
   }
-  std::cout << rows.size() << " rows, " << buildings.size() << " buildings; rule: agreement >= " << format_double(gate)
+  const auto line = areamatch_cli::counts_line;
+  std::cout << rows.size() << " rows, " << buildings.size() << " buildings (" << real_buildings
+            << (judging.all_judge ? " judging: no real building, generated ones judge" : " real, which judge; the others generated, which only train")
+            << "); rule: agreement >= " << format_double(gate)
             << " with lower wall agreement <= " << format_double(gate_walls) << ", or p_correct >= "
             << format_double(base.accept_p_correct) << "\n\n"
-            << "leave-one-building-out (a pair of two buildings counts under both):\n"
+            << "leave-one-building-out, every building (a pair of two buildings counts under both):\n"
             << "building | right answers | false rejects | wrong answers of one building | accepted | pairs of different buildings | accepted\n";
-  auto line = [](const std::string& name, const DecisionCounts& c) {
-    return name + " | " + std::to_string(c.right) + " | " + std::to_string(c.right_rejected) + " (" +
-           percent(c.right_rejected, c.right) + ") | " + std::to_string(c.wrong_same) + " | " +
-           std::to_string(c.wrong_same_accepted) + " | " + std::to_string(c.different) + " | " +
-           std::to_string(c.different_accepted) + " (" + percent(c.different_accepted, c.different) + ")\n";
-  };
-  for (std::size_t b = 0; b < buildings.size(); ++b) std::cout << line(buildings[b], per_building[b]);
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
+    std::cout << line(buildings[b] + (judging.judges[b] || judging.all_judge ? "" : " (generated)"), per_building[b]);
+  }
   std::cout << line("total (cross-validated)", cv_total) << line("total (in-sample)", in_sample_total)
             << line("other rule: p_correct >= 0.5 alone (cross-validated)", cv_model_half)
             << line("other rule: agreement >= " + format_double(gate) + " (lower walls <= " + format_double(gate_walls) +
                         ") alone", gate_only);
+  std::cout << "\n" << areamatch_cli::judged_report(rows, cv_accepted, buildings, judging, roles, "leave-one-building-out");
   std::cout << "\nfitted on all rows: bias = " << format_fixed(fitted.bias, 3) << ", weights = {";
   for (std::size_t i = 0; i < fitted.weights.size(); ++i) {
     std::cout << (i ? ", " : "") << format_fixed(fitted.weights[i], 3);
@@ -870,23 +880,26 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   if (args.flag("choose-rule")) {
     const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
     if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
-    std::vector<std::size_t> all_rows(rows.size());
-    std::iota(all_rows.begin(), all_rows.end(), std::size_t{0});
-    const Rule shipped = choose_rule(rows, all_rows, predicted, max_false_accept);
+    // Chosen on the judging rows only: generated buildings train the model, real ones choose.
+    std::vector<std::size_t> judged_rows;
+    std::vector<double> judged_predicted;
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (!judging.judged(rows[i])) continue;
+      judged_rows.push_back(i);
+      judged_predicted.push_back(predicted[i]);
+    }
+    const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept);
     std::vector<Rule> chosen;
-    std::vector<char> accepted;
+    std::vector<signed char> accepted;
     try {
-      accepted = nested_rule_cv(rows, buildings.size(), l2, base, max_false_accept, chosen);
+      accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, chosen);
     } catch (const areamatch::parameter_error& e) {
       throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
                        e.what() + "); nested cross-validation needs more buildings with right answers");
     }
-    std::vector<DecisionCounts> nested_per_building(buildings.size());
     DecisionCounts nested_total;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      const CalibrationRow& r = rows[i];
-      nested_total.add(r.sample.correct, r.different_buildings, accepted[i]);
-      DecisionCounts::add_per_building(nested_per_building, r, accepted[i]);
+      if (accepted[i] >= 0) nested_total.add(rows[i].sample.correct, rows[i].different_buildings, accepted[i] > 0);
     }
     std::map<std::array<double, 3>, int> folds;
     for (const Rule& fold_rule : chosen) ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.accept_p}];
@@ -899,9 +912,10 @@ int run_calibrate(const std::vector<std::string>& tokens) {
       std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1]) << ", p "
                 << format_double(thresholds[2]) << "] x" << n;
     }
-    std::cout << "\n\nnested leave-one-building-out (model and thresholds chosen without the building):\n";
-    for (std::size_t b = 0; b < buildings.size(); ++b) std::cout << line(buildings[b], nested_per_building[b]);
-    std::cout << line("total (nested cross-validation)", nested_total);
+    std::cout << "\n\n"
+              << areamatch_cli::judged_report(rows, accepted, buildings, judging, roles,
+                                              "nested leave-one-building-out (model and thresholds chosen without the building)")
+              << line("total (nested cross-validation)", nested_total);
   }
   return 0;
 }

@@ -24,9 +24,38 @@
 
 namespace areamatch_cli {
 
+/// What kind of map a map is, learnt from the kinds of the pairs it is in (`MapRoles`): a robot's
+/// SLAM map, a floor-plan layout, a layout with furniture drawn in, a hand-held scan, or a
+/// generated map. Generated buildings may train the decision but do not judge it.
+enum class MapRole { unknown, slam, layout, furnished, scan, generated };
+
+inline const char* role_name(MapRole role) {
+  switch (role) {
+    case MapRole::slam: return "SLAM map";
+    case MapRole::layout: return "layout";
+    case MapRole::furnished: return "furnished layout";
+    case MapRole::scan: return "hand-held scan";
+    case MapRole::generated: return "generated map";
+    default: return "map of unknown kind";
+  }
+}
+
+/// The roles of a pair's two maps by its manifest kind ({unknown, unknown} for a kind not known).
+inline std::array<MapRole, 2> roles_of_kind(const std::string& kind) {
+  if (kind == "slam_to_layout") return {MapRole::slam, MapRole::layout};
+  if (kind == "furnished_to_layout") return {MapRole::furnished, MapRole::layout};
+  if (kind == "sensor_to_layout") return {MapRole::scan, MapRole::layout};
+  if (kind == "sensor_to_sensor") return {MapRole::scan, MapRole::scan};
+  if (kind.rfind("synthetic", 0) == 0) return {MapRole::generated, MapRole::generated};
+  return {MapRole::unknown, MapRole::unknown};
+}
+
+/// Map path (canonical) -> role, from every pair of one building read, ambiguous ones included.
+using MapRoles = std::map<std::string, MapRole>;
+
 /// One labelled row of an eval CSV.
 struct CalibrationRow {
-  std::string name, source, destination;
+  std::string name, kind, source, destination;
   bool different_buildings = false;
   double agreement = 0.0;    ///< MatchEvidence::agreement, for the rule's agreement gate
   double lower_walls = 0.0;  ///< `areamatch::lower_wall_agreement`, which limits the gate
@@ -67,7 +96,9 @@ inline std::vector<std::string> csv_fields(const std::string& line) {
 /// The labelled rows of an eval CSV: pairs of different buildings (wrong by definition) and pairs
 /// with ground truth (right when the transform is within the manifest's correct_if). Pairs that
 /// could not run, have no ground truth, or are marked ambiguous are left out.
-inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path) {
+/// `roles` (when given) learns the roles of the maps of every pair of one building, ambiguous
+/// ones included.
+inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path, MapRoles* roles = nullptr) {
   std::ifstream in(path);
   if (!in) throw areamatch::io_error("cannot read " + path);
   std::string line;
@@ -78,7 +109,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     if (it == header.end()) throw areamatch::format_error(path + ": no column '" + name + "' (not an areamatch eval results.csv of this version)");
     return static_cast<std::size_t>(it - header.begin());
   };
-  const std::size_t c_name = column("name"), c_source = column("source"), c_dest = column("destination"),
+  const std::size_t c_name = column("name"), c_kind = column("kind"), c_source = column("source"), c_dest = column("destination"),
                     c_ambiguous = column("ambiguous"), c_different = column("different_buildings"),
                     c_failure = column("failure"), c_truth = column("transform_correct"),
                     c_forward = column("forward_wall_agreement"), c_reverse = column("reverse_wall_agreement"),
@@ -99,14 +130,24 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
       throw areamatch::format_error(path + ":" + std::to_string(line_number) + ": " + std::to_string(f.size()) +
                                     " fields, the header has " + std::to_string(header.size()));
     }
+    std::error_code ec;
+    const std::string source = std::filesystem::weakly_canonical(f[c_source], ec).string();
+    const std::string destination = std::filesystem::weakly_canonical(f[c_dest], ec).string();
+    if (roles && f[c_different] != "true") {
+      const auto pair_roles = roles_of_kind(f[c_kind]);
+      for (auto [map, role] : {std::pair{&source, pair_roles[0]}, std::pair{&destination, pair_roles[1]}}) {
+        MapRole& known = (*roles)[*map];
+        if (known == MapRole::unknown) known = role;
+      }
+    }
     if (!f[c_failure].empty() || f[c_ambiguous] == "true" || f[c_p].empty()) continue;
     CalibrationRow row;
     row.name = f[c_name];
+    row.kind = f[c_kind];
     row.different_buildings = f[c_different] == "true";
     if (!row.different_buildings && f[c_truth].empty()) continue;
-    std::error_code ec;
-    row.source = std::filesystem::weakly_canonical(f[c_source], ec).string();
-    row.destination = std::filesystem::weakly_canonical(f[c_dest], ec).string();
+    row.source = source;
+    row.destination = destination;
     areamatch::MatchResult r;  // just the fields decision_features reads
     r.evidence.forward_wall_agreement = value(f, c_forward);
     r.evidence.reverse_wall_agreement = value(f, c_reverse);
@@ -148,6 +189,44 @@ inline std::vector<std::string> assign_buildings(std::vector<CalibrationRow>& ro
     }
   }
   return names;
+}
+
+/// Per building: whether it judges the decision (a real building) or only trains it (a generated
+/// one: any of its maps generated). When no building is real, every building judges (`all_judge`).
+struct JudgingBuildings {
+  std::vector<char> judges;
+  bool all_judge = false;  ///< no real building in the rows: the generated ones judge
+  /// Whether a row is judged: every building it touches judges.
+  bool judged(const CalibrationRow& r) const {
+    return judges[static_cast<std::size_t>(r.source_building)] && judges[static_cast<std::size_t>(r.dest_building)];
+  }
+};
+
+inline JudgingBuildings judging_buildings(const std::vector<CalibrationRow>& rows, std::size_t buildings, const MapRoles& roles) {
+  JudgingBuildings out;
+  out.judges.assign(buildings, 1);
+  auto role = [&](const std::string& map) {
+    const auto it = roles.find(map);
+    return it == roles.end() ? MapRole::unknown : it->second;
+  };
+  for (const auto& r : rows) {
+    if (role(r.source) == MapRole::generated) out.judges[static_cast<std::size_t>(r.source_building)] = 0;
+    if (role(r.destination) == MapRole::generated) out.judges[static_cast<std::size_t>(r.dest_building)] = 0;
+  }
+  if (std::find(out.judges.begin(), out.judges.end(), 1) == out.judges.end()) {
+    out.judges.assign(buildings, 1);
+    out.all_judge = true;
+  }
+  return out;
+}
+
+/// The modality a row belongs to: its two maps' roles, source first ("SLAM map -> layout").
+inline std::string modality(const CalibrationRow& r, const MapRoles& roles) {
+  auto role = [&](const std::string& map) {
+    const auto it = roles.find(map);
+    return role_name(it == roles.end() ? MapRole::unknown : it->second);
+  };
+  return std::string(role(r.source)) + " -> " + role(r.destination);
 }
 
 /// Outcome counts of a decision on some rows.
@@ -282,20 +361,52 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
   return best;
 }
 
-/// Nested leave-one-building-out cross-validation of the whole procedure: for each building, the
-/// model is fitted and the rule's thresholds chosen (`choose_rule` on the other buildings' own
-/// leave-one-building-out predictions) without any pair that touches it, and then its pairs are
-/// judged. A pair of two buildings is judged under both and counts as accepted only when both
-/// accept a right answer, or either accepts a wrong one. Returns whether each row is accepted;
-/// `chosen` gets each fold's rule.
-inline std::vector<char> nested_rule_cv(const std::vector<CalibrationRow>& rows, std::size_t buildings, double l2,
+/// Leave-one-building-out predictions of rows `judged` (a subset of `train`) from models fitted on
+/// rows of `train` alone: one fold per judging building, fitted on the rows of `train` that do not
+/// touch it (generated buildings' rows always train). In the order of `judged`; a row of two
+/// buildings keeps the less favourable prediction, as `areamatch::leave_one_building_out` does.
+inline std::vector<double> held_out_predictions(const std::vector<CalibrationRow>& rows, const std::vector<std::size_t>& train,
+                                                const std::vector<std::size_t>& judged, const JudgingBuildings& judging,
+                                                double l2, const areamatch::DecisionParams& base) {
+  std::vector<double> predicted(judged.size(), -1.0);
+  for (std::size_t held = 0; held < judging.judges.size(); ++held) {
+    if (!judging.judges[held]) continue;
+    auto touches = [&](std::size_t i) { return rows[i].buildings()[0] == held || rows[i].buildings()[1] == held; };
+    std::vector<std::size_t> test;
+    for (std::size_t k = 0; k < judged.size(); ++k) {
+      if (touches(judged[k])) test.push_back(k);
+    }
+    if (test.empty()) continue;
+    std::vector<areamatch::DecisionSample> samples;
+    for (std::size_t i : train) {
+      if (!touches(i)) samples.push_back(rows[i].sample);
+    }
+    const areamatch::DecisionParams model = areamatch::fit_decision(samples, l2, base);
+    for (std::size_t k : test) {
+      const CalibrationRow& r = rows[judged[k]];
+      const double p = areamatch::p_correct(r.sample.features, model);
+      double& out = predicted[k];
+      out = out < 0.0 ? p : r.sample.correct ? std::min(out, p) : std::max(out, p);
+    }
+  }
+  return predicted;
+}
+
+/// Nested leave-one-building-out cross-validation of the whole procedure: for each judging (real)
+/// building, the model is fitted and the rule's thresholds chosen (`choose_rule` on the other
+/// judging buildings' rows and their own leave-one-building-out predictions) without any pair
+/// that touches it, and then its pairs are judged; generated buildings only ever train. A pair of
+/// two buildings is judged under both and counts as accepted only when both accept a right
+/// answer, or either accepts a wrong one. Returns per row 1 (accepted), 0 (rejected) or −1 (not
+/// judged: it touches a generated building); `chosen` gets each fold's rule.
+inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>& rows, const JudgingBuildings& judging, double l2,
                                         const areamatch::DecisionParams& base, double max_false_accept,
                                         std::vector<Rule>& chosen) {
   std::vector<int> verdict(rows.size(), -1);
-  for (std::size_t held = 0; held < buildings; ++held) {
+  for (std::size_t held = 0; held < judging.judges.size(); ++held) {
+    if (!judging.judges[held]) continue;  // generated buildings train, they do not judge
     std::vector<std::size_t> train, test;
     std::vector<areamatch::DecisionSample> samples;
-    std::vector<std::array<std::size_t, 2>> groups;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& r = rows[i];
       const std::array<std::size_t, 2> b = r.buildings();
@@ -304,11 +415,16 @@ inline std::vector<char> nested_rule_cv(const std::vector<CalibrationRow>& rows,
       } else {
         train.push_back(i);
         samples.push_back(r.sample);
-        groups.push_back(b);
       }
     }
     if (test.empty()) continue;
-    const Rule rule = choose_rule(rows, train, areamatch::leave_one_building_out(samples, groups, l2, base), max_false_accept);
+    // The thresholds are chosen on the judging rows of the other buildings, each predicted by a
+    // model fitted without its buildings (the inner leave-one-building-out).
+    std::vector<std::size_t> inner;
+    for (std::size_t i : train) {
+      if (judging.judged(rows[i])) inner.push_back(i);
+    }
+    const Rule rule = choose_rule(rows, inner, held_out_predictions(rows, train, inner, judging, l2, base), max_false_accept);
     chosen.push_back(rule);
     const areamatch::DecisionParams model = areamatch::fit_decision(samples, l2, base);
     for (std::size_t i : test) {
@@ -317,7 +433,53 @@ inline std::vector<char> nested_rule_cv(const std::vector<CalibrationRow>& rows,
       v = v < 0 ? accepted : rows[i].sample.correct ? (v && accepted) : (v || accepted);
     }
   }
-  return std::vector<char>(verdict.begin(), verdict.end());
+  return std::vector<signed char>(verdict.begin(), verdict.end());
+}
+
+inline std::string percent(std::size_t part, std::size_t whole);
+
+/// One table line of counts: name | right | false rejects (%) | wrong of one building | accepted |
+/// different buildings | accepted (%).
+inline std::string counts_line(const std::string& name, const DecisionCounts& c) {
+  return name + " | " + std::to_string(c.right) + " | " + std::to_string(c.right_rejected) + " (" +
+         percent(c.right_rejected, c.right) + ") | " + std::to_string(c.wrong_same) + " | " +
+         std::to_string(c.wrong_same_accepted) + " | " + std::to_string(c.different) + " | " +
+         std::to_string(c.different_accepted) + " (" + percent(c.different_accepted, c.different) + ")\n";
+}
+
+/// The judging buildings' view of `accepted` (one per row; rows not judged are skipped): per
+/// judging building, per modality (`modality`), their total, and the total of the other buildings'
+/// rows (those that only train), each line titled with `what`.
+inline std::string judged_report(const std::vector<CalibrationRow>& rows, const std::vector<signed char>& accepted,
+                                 const std::vector<std::string>& buildings, const JudgingBuildings& judging,
+                                 const MapRoles& roles, const std::string& what) {
+  std::vector<DecisionCounts> per_building(buildings.size());
+  std::map<std::string, DecisionCounts> per_modality;
+  DecisionCounts judged_total, training_total;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    const CalibrationRow& r = rows[i];
+    if (accepted[i] < 0) continue;
+    const bool a = accepted[i] > 0;
+    if (!judging.judged(r)) {
+      training_total.add(r.sample.correct, r.different_buildings, a);
+      continue;
+    }
+    judged_total.add(r.sample.correct, r.different_buildings, a);
+    per_modality[modality(r, roles)].add(r.sample.correct, r.different_buildings, a);
+    DecisionCounts::add_per_building(per_building, r, a);
+  }
+  const std::string kind = judging.all_judge ? "buildings (no real building in the rows: generated ones judge)" : "real buildings";
+  std::string out = what + ", " + kind + ":\nbuilding | right answers | false rejects | wrong answers of one building | "
+                    "accepted | pairs of different buildings | accepted\n";
+  for (std::size_t b = 0; b < buildings.size(); ++b) {
+    if (judging.judges[b]) out += counts_line(buildings[b], per_building[b]);
+  }
+  out += "modality (source -> destination) | right answers | false rejects | wrong answers of one building | accepted | "
+         "pairs of different buildings | accepted\n";
+  for (const auto& [name, counts] : per_modality) out += counts_line(name, counts);
+  out += counts_line(judging.all_judge ? "total, all buildings" : "total, real buildings", judged_total);
+  if (!judging.all_judge) out += counts_line("total, generated buildings (they train, they do not judge)", training_total);
+  return out;
 }
 
 inline std::string percent(std::size_t part, std::size_t whole) {
