@@ -776,14 +776,14 @@ const char* kCalibrateHelp =
     "Real buildings judge, generated ones only train: a building with a map of a generated pair\n"
     "(manifest kind 'synthetic') is generated; the rates are also given per real building and per\n"
     "modality (the kinds of the two maps, learnt from the manifests' kinds: SLAM map, layout,\n"
-    "furnished layout, hand-held scan), and --choose-rule chooses the thresholds on real buildings'\n"
-    "rows, judged by nested leave-one-real-building-out.\n"
+    "furnished layout, hand-held scan), and --choose-rule's choice is judged by nested\n"
+    "leave-one-real-building-out (generated buildings always train).\n"
     "Options:\n"
     "  --l2 L             L2 penalty on the weights (default 1)\n"
     "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.85)\n"
     "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
     "  --gate-max-lower-walls W  ... when the lower wall agreement is <= W (default 0.7; above 1: always)\n"
-    "  --svg OUT.svg      the reliability diagram (cross-validated)\n"
+    "  --svg OUT.svg      the reliability diagram of the real buildings' rows (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
     "                     the in-sample p_correct and whether the rule accepts it (cross-validated):\n"
     "                     to see which pairs a building's false rejects and accepts are\n"
@@ -792,10 +792,12 @@ const char* kCalibrateHelp =
     "                     measure that choice by nested leave-one-building-out cross-validation: each\n"
     "                     building is judged by a model and thresholds chosen without it (slow: one\n"
     "                     inner cross-validation per building)\n"
-    "  --max-false-accept F  the bound for --choose-rule (default 0.005)\n";
+    "  --max-false-accept F  the bound for --choose-rule (default 0.005)\n"
+    "  --choose-on all|real  the rows --choose-rule chooses on: every row, generated ones too\n"
+    "                     (default), or real buildings' alone; judged on real buildings either way\n";
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "svg", "predictions", "max-false-accept"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "svg", "predictions", "max-false-accept", "choose-on"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -847,7 +849,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
             << "leave-one-building-out, every building (a pair of two buildings counts under both):\n"
             << "building | right answers | false rejects | wrong answers of one building | accepted | pairs of different buildings | accepted\n";
   for (std::size_t b = 0; b < buildings.size(); ++b) {
-    std::cout << line(buildings[b] + (judging.judges[b] || judging.all_judge ? "" : " (generated)"), per_building[b]);
+    std::cout << line(buildings[b] + (judging.judges[b] ? "" : " (generated)"), per_building[b]);
   }
   std::cout << line("total (cross-validated)", cv_total) << line("total (in-sample)", in_sample_total)
             << line("other rule: p_correct >= 0.5 alone (cross-validated)", cv_model_half)
@@ -865,26 +867,45 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::cout << ")\n\nreliability (cross-validated): bin | rows | mean predicted | observed right | observed right, "
                "classes weighted equally (the fit's prior)\n";
   constexpr int bins = 10;
+  auto print_table = [&](const std::vector<ReliabilityBin>& table) {
+    for (int b = 0; b < bins; ++b) {
+      const ReliabilityBin& r = table[static_cast<std::size_t>(b)];
+      std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << r.rows
+                << " | " << (r.rows ? format_fixed(r.mean_predicted, 3) : "-") << " | "
+                << (r.rows ? format_fixed(r.observed, 3) : "-") << " | "
+                << (r.rows ? format_fixed(r.observed_balanced, 3) : "-") << "\n";
+    }
+  };
   const std::vector<ReliabilityBin> table = reliability(predicted, rows, bins);
-  for (int b = 0; b < bins; ++b) {
-    const ReliabilityBin& r = table[static_cast<std::size_t>(b)];
-    std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << r.rows
-              << " | " << (r.rows ? format_fixed(r.mean_predicted, 3) : "-") << " | "
-              << (r.rows ? format_fixed(r.observed, 3) : "-") << " | " << (r.rows ? format_fixed(r.observed_balanced, 3) : "-")
-              << "\n";
+  print_table(table);
+  // The real buildings' rows alone: what a user's maps meet.
+  std::vector<CalibrationRow> real_rows;
+  std::vector<double> real_predicted;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!judging.judged(i)) continue;
+    real_rows.push_back(rows[i]);
+    real_predicted.push_back(predicted[i]);
   }
-  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(table));
+  const std::vector<ReliabilityBin> real_table = reliability(real_predicted, real_rows, bins);
+  if (!judging.all_judge) {
+    std::cout << "\nreliability of the real buildings' rows alone (cross-validated; --svg draws this one):\n";
+    print_table(real_table);
+  }
+  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(real_table));
   if (const auto out = args.text("predictions")) {
     areamatch::write_text_file(*out, predictions_csv(rows, buildings, predicted, in_sample, rule));
   }
   if (args.flag("choose-rule")) {
     const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
     if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
-    // Chosen on the judging rows only: generated buildings train the model, real ones choose.
+    // Chosen on every row (or, --choose-on real, on real buildings' alone); judged on real ones.
+    const std::string choose_on = args.text("choose-on").value_or("all");
+    if (choose_on != "real" && choose_on != "all") throw UsageError("--choose-on must be real or all, got '" + choose_on + "'");
+    const bool choose_on_all = choose_on == "all";
     std::vector<std::size_t> judged_rows;
     std::vector<double> judged_predicted;
     for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (!judging.judged(rows[i])) continue;
+      if (!choose_on_all && !judging.judged(i)) continue;
       judged_rows.push_back(i);
       judged_predicted.push_back(predicted[i]);
     }
@@ -892,7 +913,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     std::vector<Rule> chosen;
     std::vector<signed char> accepted;
     try {
-      accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, chosen);
+      accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, chosen);
     } catch (const areamatch::parameter_error& e) {
       throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
                        e.what() + "); nested cross-validation needs more buildings with right answers");
