@@ -17,6 +17,7 @@
 #include <areamatch/io.hpp>
 #include <areamatch/io/match_files.hpp>
 #include <areamatch/merge.hpp>
+#include <areamatch/simulate.hpp>
 
 #include <algorithm>
 #include <array>
@@ -29,6 +30,7 @@
 #include <iostream>
 #include <map>
 #include <numeric>
+#include <optional>
 #include <sstream>
 #include <string>
 #include <vector>
@@ -163,6 +165,86 @@ int run_info(const std::vector<std::string>& tokens) {
 
 // ------------------------------------------------------------------------------------ generate
 
+std::string matrix_json(const areamatch::PixelTransform& m) {
+  return "[[" + format_double(m(0, 0)) + ", " + format_double(m(0, 1)) + ", " + format_double(m(0, 2)) + "], [" +
+         format_double(m(1, 0)) + ", " + format_double(m(1, 1)) + ", " + format_double(m(1, 2)) + "]]";
+}
+
+const char* kLidarOptionsHelp =
+    "Laser-SLAM options (areamatch simulate, areamatch generate --style lidar; docs/synthetic.md):\n"
+    "  --beams N              beams per scan (default 541)\n"
+    "  --fov DEG              field of view, centred on the direction of travel (default 270)\n"
+    "  --range M              maximum range in metres (default 15)\n"
+    "  --range-noise M        standard deviation of each range in metres (default 0.02)\n"
+    "  --dropout P            share of beams that return nothing (default 0.02)\n"
+    "  --furniture D          furniture blobs per square metre of free space (default 0.05)\n"
+    "  --glass S              share of the outer walls' 1 m panes that rays pass through (default 0.15)\n"
+    "  --people N             people near the robot in each scan (default 2)\n"
+    "  --explored F           share of the waypoints visited, those nearest the start, 0..1 (default 1)\n"
+    "  --bend M               largest drift left after the loop closure, metres (default 0.3)\n"
+    "  --break P              chance of a broken piece: the path turned by 3 degrees and shifted by\n"
+    "                         0.2 m from some scan on, as after a wrong loop closure (default 0)\n"
+    "  --robot-resolution R   the SLAM map's metres per cell (default 0.05)\n"
+    "  --rotation DEG         the map's turn (default: golden-angle steps over a set, 37 for one)\n"
+    "  --mirror               the map is a mirror image\n"
+    "  --binary               unknown written as occupied (free against non-free only), as the\n"
+    "                         room-segmentation dataset's SLAM maps are\n";
+
+const std::set<std::string> kLidarOptions = {"beams", "fov",   "range", "range-noise", "dropout", "furniture", "glass",
+                                             "people", "explored", "bend", "break", "robot-resolution", "rotation"};
+
+areamatch::LidarSlamParams lidar_params_from(const Args& args) {
+  areamatch::LidarSlamParams p;
+  p.beams = static_cast<int>(args.integer("beams", 1, 100000).value_or(p.beams));
+  if (const auto fov = args.number("fov", true)) {
+    if (*fov > 360.0) throw UsageError("--fov must be at most 360 degrees, got " + format_double(*fov));
+    p.field_of_view_rad = *fov * areamatch::pi / 180.0;
+  }
+  p.max_range_m = args.number("range", true).value_or(p.max_range_m);
+  p.range_noise_m = args.number("range-noise", false, true).value_or(p.range_noise_m);
+  p.dropout = args.number("dropout", false, true).value_or(p.dropout);
+  p.furniture_per_m2 = args.number("furniture", false, true).value_or(p.furniture_per_m2);
+  p.glass_share = args.number("glass", false, true).value_or(p.glass_share);
+  p.people = static_cast<int>(args.integer("people", 0, 1000).value_or(p.people));
+  p.explored_fraction = args.number("explored", true).value_or(p.explored_fraction);
+  p.bend_m = args.number("bend", false, true).value_or(p.bend_m);
+  p.break_probability = args.number("break", false, true).value_or(p.break_probability);
+  p.resolution_m = args.number("robot-resolution", true).value_or(p.resolution_m);
+  p.mirror = args.flag("mirror");
+  p.binary = args.flag("binary");
+  try {
+    p.validate();
+  } catch (const areamatch::parameter_error& e) {
+    throw UsageError(std::string("a laser-SLAM option is out of range: ") + e.what() + " (see --help)");
+  }
+  return p;
+}
+
+/// The manifest entry of a simulated map `source` onto `destination` (paths as the manifest writes them).
+std::string simulated_entry(const std::string& name, const std::string& source, const std::string& destination,
+                            const areamatch::SimulatedSlamMap& map, double scale, std::optional<double> door_width_m) {
+  std::ostringstream entry;
+  entry << "  {\n   \"name\": \"" << name << "\",\n   \"kind\": \"synthetic_lidar\",\n"
+        << "   \"source\": \"" << source << "\",\n   \"destination\": \"" << destination << "\",\n";
+  if (door_width_m) entry << "   \"door_width_m\": " << format_double(*door_width_m) << ",\n";
+  entry << "   \"note\": \"simulated laser-SLAM map: " << map.scans << " scans, " << map.furniture << " furniture blobs, bend "
+        << format_fixed(map.bend_m, 2) << " m" << (map.broken ? ", a broken piece" : "") << "\",\n"
+        << "   \"ground_truth\": {\"pixel_transform\": " << matrix_json(map.pixel_transform)
+        << ", \"scale\": " << format_double(scale) << ", \"reflected\": " << (map.T_dest_source.reflected ? "true" : "false")
+        << "}\n  }";
+  return entry.str();
+}
+
+std::string manifest_of(const std::vector<std::string>& entries, const std::string& description, double max_displacement_m) {
+  std::ostringstream manifest;
+  manifest << "{\n \"description\": \"" << description << " pixel_transform maps a source pixel (col, row) to a destination pixel.\",\n"
+           << " \"correct_if\": {\"max_rotation_error_deg\": 3.0, \"max_mean_displacement_m\": " << format_double(max_displacement_m)
+           << "},\n \"pairs\": [\n";
+  for (std::size_t i = 0; i < entries.size(); ++i) manifest << entries[i] << (i + 1 < entries.size() ? ",\n" : "\n");
+  manifest << " ]\n}\n";
+  return manifest.str();
+}
+
 const char* kGenerateHelp =
     "usage: areamatch generate OUTDIR [options]\n"
     "Writes a synthetic building and a degraded, turned 'robot map' of it with the exact ground truth:\n"
@@ -187,7 +269,8 @@ const char* kGenerateHelp =
     "                         of part of the floor (0.02 m cells, thin ragged walls seen from one side with\n"
     "                         gaps, closed doors, furniture, 40 % of the rooms near one start, 0.3 m drift)\n"
     "                         onto a line-drawn layout (0.025 m cells, 0.05 m lines); the options above\n"
-    "                         still override (docs/synthetic.md)\n";
+    "                         still override (docs/synthetic.md); or lidar: a simulated laser-SLAM map of\n"
+    "                         the building (the options below; --noise, --clutter, --speckles do not apply)\n";
 
 areamatch::CorridorLayout parse_layout(const std::string& name) {
   static const std::map<std::string, areamatch::CorridorLayout> kinds = {
@@ -199,18 +282,22 @@ areamatch::CorridorLayout parse_layout(const std::string& name) {
   return it->second;
 }
 
-std::string matrix_json(const areamatch::PixelTransform& m) {
-  return "[[" + format_double(m(0, 0)) + ", " + format_double(m(0, 1)) + ", " + format_double(m(0, 2)) + "], [" +
-         format_double(m(1, 0)) + ", " + format_double(m(1, 1)) + ", " + format_double(m(1, 2)) + "]]";
-}
 
 /// Writes one synthetic pair into `out` and returns its manifest entry (paths relative to
 /// `out`'s parent when `prefix` names `out`, else to `out`).
 std::string generate_pair(const std::string& out, const std::string& prefix, std::uint64_t seed,
                           const areamatch::BuildingParams& building_params, const areamatch::RobotMapParams& robot_params,
-                          double layout_line_width_m) {
+                          double layout_line_width_m, const areamatch::LidarSlamParams* lidar = nullptr) {
   auto building = areamatch::generate_building(building_params, seed);
-  const auto robot = areamatch::make_robot_map(building, robot_params, seed);
+  areamatch::RobotMap robot;
+  if (lidar) {  // --style lidar: rays through the building as built
+    auto simulated = areamatch::simulate_lidar_slam(building.layout, *lidar, seed);
+    robot.grid = std::move(simulated.grid);
+    robot.T_dest_source = simulated.T_dest_source;
+    robot.pixel_transform = simulated.pixel_transform;
+  } else {
+    robot = areamatch::make_robot_map(building, robot_params, seed);
+  }
   // A line-drawn floor plan (hand-held style): walls as thin lines, drawn after the scan was made
   // from the building as built.
   // Thinning the walls also shortens each wall end by half the thickness it loses, so the drawn
@@ -236,21 +323,21 @@ std::string generate_pair(const std::string& out, const std::string& prefix, std
             << building.areas.size() << " areas, " << building.doors.size() << " doors), robot map "
             << robot.grid.width() << "x" << robot.grid.height() << "\n";
   std::ostringstream entry;
-  entry << "  {\n   \"name\": \"synthetic_" << seed << "\",\n   \"kind\": \"synthetic\",\n"
+  entry << "  {\n   \"name\": \"synthetic_" << seed << "\",\n   \"kind\": \"" << (lidar ? "synthetic_lidar" : "synthetic") << "\",\n"
         << "   \"source\": \"" << prefix << "robot.yaml\",\n   \"destination\": \"" << prefix << "layout.yaml\",\n"
         << "   \"door_width_m\": " << format_double(door_width_m) << ",\n"
         << "   \"ground_truth\": {\"pixel_transform\": " << matrix_json(robot.pixel_transform)
-        << ", \"scale\": " << format_double(robot_params.resolution / building_params.resolution)
+        << ", \"scale\": " << format_double((lidar ? lidar->resolution_m : robot_params.resolution) / building_params.resolution)
         << ", \"reflected\": " << (robot.T_dest_source.reflected ? "true" : "false") << "}\n  }";
   return entry.str();
 }
 
 int run_generate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"mirror", "help"},
-                  {"seed", "count", "width", "height", "layout", "door-width", "rotation", "robot-resolution", "noise",
-                   "clutter", "explored", "speckles", "style"});
+  const Args args(tokens, {"mirror", "binary", "help"},
+                  merged(kLidarOptions, {"seed", "count", "width", "height", "layout", "door-width", "rotation", "robot-resolution",
+                                         "noise", "clutter", "explored", "speckles", "style"}));
   if (args.flag("help")) {
-    std::cout << kGenerateHelp;
+    std::cout << kGenerateHelp << kLidarOptionsHelp;
     return 0;
   }
   args.expect_positional(1, "OUTDIR");
@@ -259,8 +346,18 @@ int run_generate(const std::vector<std::string>& tokens) {
   const auto count = args.integer("count", 1, 10000);
 
   const std::string style = args.text("style").value_or("robot");
-  if (style != "robot" && style != "handheld") throw UsageError("--style must be robot or handheld, got '" + style + "'");
+  if (style != "robot" && style != "handheld" && style != "lidar") {
+    throw UsageError("--style must be robot, handheld or lidar, got '" + style + "'");
+  }
   const bool handheld = style == "handheld";
+  std::optional<areamatch::LidarSlamParams> lidar;
+  if (style == "lidar") {
+    lidar = lidar_params_from(args);
+  } else {
+    for (const char* name : {"beams", "fov", "range", "range-noise", "dropout", "furniture", "glass", "people", "bend", "break"}) {
+      if (args.text(name)) throw UsageError(std::string("--") + name + " is a laser-SLAM option: it needs --style lidar");
+    }
+  }
   areamatch::BuildingParams building_params;
   if (handheld) building_params.resolution = 0.025;  // the hand-held layouts: 0.013-0.025 m per pixel
   const double layout_line_width_m = handheld ? 0.05 : 0.0;
@@ -290,9 +387,11 @@ int run_generate(const std::vector<std::string>& tokens) {
     // A set turns each robot map differently (golden-angle steps) unless --rotation is given.
     const double deg = rotation_deg ? *rotation_deg : count ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
     robot_params.rotation_rad = deg * areamatch::pi / 180.0;
+    if (lidar) lidar->rotation_rad = robot_params.rotation_rad;
     const std::string folder = "pair_" + std::to_string(seed);
-    entries.push_back(count ? generate_pair(out + "/" + folder, folder + "/", seed, building_params, robot_params, layout_line_width_m)
-                            : generate_pair(out, "", seed, building_params, robot_params, layout_line_width_m));
+    const areamatch::LidarSlamParams* simulated = lidar ? &*lidar : nullptr;
+    entries.push_back(count ? generate_pair(out + "/" + folder, folder + "/", seed, building_params, robot_params, layout_line_width_m, simulated)
+                            : generate_pair(out, "", seed, building_params, robot_params, layout_line_width_m, simulated));
   }
   std::ostringstream manifest;
   manifest << "{\n \"description\": \"Synthetic pairs written by 'areamatch generate'. pixel_transform maps a source "
@@ -301,6 +400,58 @@ int run_generate(const std::vector<std::string>& tokens) {
   for (std::size_t i = 0; i < entries.size(); ++i) manifest << entries[i] << (i + 1 < entries.size() ? ",\n" : "\n");
   manifest << " ]\n}\n";
   areamatch::write_text_file(out + "/pairs.json", manifest.str());
+  std::cout << "ground truth of " << entries.size() << " pair(s) in " << out << "/pairs.json\n";
+  return 0;
+}
+
+// ------------------------------------------------------------------------------------ simulate
+
+const char* kSimulateHelp =
+    "usage: areamatch simulate PLAN OUTDIR [options] [map options]\n"
+    "Simulates what a robot with a 2D laser scanner maps driving through a floor plan (any map:\n"
+    "free space, walls, unknown or outside): furniture and people the rays meet, glass in outer walls,\n"
+    "odometry drift with an imperfect loop closure, log-odds integration into a ROS trinary map. Writes\n"
+    "  OUTDIR/slam_<seed>.png + .yaml   each simulated SLAM map (source)\n"
+    "  OUTDIR/pairs.json                a manifest onto PLAN (destination) with the exact ground truth\n"
+    "Options:\n"
+    "  --seed N               random seed of the first map (default 1); same seed, same map\n"
+    "  --count N              maps, one per seed from --seed (default 1)\n"
+    "  --door-width M         the door width the manifest gives the pairs (default: none)\n";
+
+int run_simulate(const std::vector<std::string>& tokens) {
+  const Args args(tokens, merged(kMapFlags, {"mirror", "binary"}), merged(merged(kMapOptions, kLidarOptions), {"seed", "count", "door-width"}));
+  if (args.flag("help")) {
+    std::cout << kSimulateHelp << kLidarOptionsHelp << kMapOptionsHelp;
+    return 0;
+  }
+  args.expect_positional(2, "PLAN OUTDIR");
+  const std::string plan_path = args.positional()[0], out = args.positional()[1];
+  auto params = lidar_params_from(args);
+  const auto first_seed = static_cast<std::uint64_t>(args.integer("seed", 0, 1LL << 62).value_or(1));
+  const auto count = args.integer("count", 1, 10000);
+  const auto door_width = args.number("door-width", true);
+  const auto rotation_deg = args.number("rotation");
+  const auto options = load_options(args);
+  note_assumed_defaults(plan_path, options, "--resolution");
+  const areamatch::OccupancyGrid plan = areamatch::load_map(plan_path, options);
+  std::error_code ec;
+  std::filesystem::create_directories(out, ec);
+  if (ec) throw areamatch::io_error(out + ": cannot create folder (" + ec.message() + ")");
+  const std::string destination = std::filesystem::absolute(plan_path).lexically_normal().string();
+  std::vector<std::string> entries;
+  for (std::uint64_t seed = first_seed; seed < first_seed + static_cast<std::uint64_t>(count.value_or(1)); ++seed) {
+    const double deg = rotation_deg ? *rotation_deg : count ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
+    params.rotation_rad = deg * areamatch::pi / 180.0;
+    const areamatch::SimulatedSlamMap map = areamatch::simulate_lidar_slam(plan, params, seed);
+    const std::string name = "slam_" + std::to_string(seed);
+    areamatch::save_map(map.grid, out + "/" + name + ".png");
+    std::cout << "wrote " << out << "/" << name << ".png: " << map.grid.width() << "x" << map.grid.height() << ", " << map.scans
+              << " scans, bend " << format_fixed(map.bend_m, 2) << " m" << (map.broken ? ", broken piece" : "") << "\n";
+    entries.push_back(simulated_entry(std::filesystem::path(plan_path).stem().string() + "_" + name, name + ".yaml", destination,
+                                      map, params.resolution_m / plan.resolution(), door_width));
+  }
+  areamatch::write_text_file(out + "/pairs.json",
+                             manifest_of(entries, "Simulated laser-SLAM maps written by 'areamatch simulate'.", 1.0));
   std::cout << "ground truth of " << entries.size() << " pair(s) in " << out << "/pairs.json\n";
   return 0;
 }
@@ -953,6 +1104,7 @@ const char* kMainHelp =
     "  merge MAP MAP...  place several maps of one building in one frame and fuse them into one map\n"
     "  eval MANIFEST     match every pair of a manifest and score it against its ground truth\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
+    "  simulate PLAN OUTDIR  simulated laser-SLAM maps of a floor plan, with ground truth\n"
     "  calibrate CSV...  fit the accept/reject decision on eval results, cross-validated by building\n"
     "  version           print the version\n"
     "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n";
@@ -966,7 +1118,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"segment", run_segment}, {"match", run_match}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
+      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -52,7 +52,9 @@ struct LidarSlamParams {
   // The world the rays meet, beyond the plan.
   double furniture_per_m2 = 0.05;                       ///< furniture blobs per m² of free space
   double furniture_min_m = 0.3, furniture_max_m = 1.4;  ///< their sides
-  double glass_share = 0.15;    ///< share of the outer walls' 1 m panes that rays pass through
+  double small_clutter_per_m2 = 0.3;                    ///< chair legs, bins: 0.05–0.15 m blobs per m²
+  double glass_share = 0.1;     ///< share of the outer walls' 1 m panes that are glass
+  double glass_pass = 0.3;      ///< share of the rays meeting glass that pass through
   double outside_hit = 0.5;     ///< a ray through glass hits something outside with this probability
   int people = 2;               ///< people (0.25 m discs) within a few metres of the robot, per scan
   // Where the robot drives.
@@ -61,6 +63,9 @@ struct LidarSlamParams {
   double waypoint_spacing_m = 2.5;
   // SLAM's errors.
   double bend_m = 0.3;  ///< largest distance of a scan position from where the ground truth puts it
+  /// Each scan's own registration error (independent per scan): what makes SLAM walls a few cells
+  /// thick and ragged rather than one clean line.
+  double scan_jitter_m = 0.03, scan_jitter_rad = 0.005;
   double break_probability = 0.0;  ///< chance of a broken piece
   double break_rotation_rad = 3.0 * pi / 180.0, break_shift_m = 0.2;
   // The map.
@@ -69,6 +74,9 @@ struct LidarSlamParams {
   double occupied_log_odds = 0.6, free_log_odds = -1.2;   ///< the trinary thresholds (ROS: p 0.65 / 0.23)
   double rotation_rad = 0.0;  ///< the map's frame turned against the plan's
   bool mirror = false;        ///< and mirrored (y flipped), as an image with rows downwards can be
+  /// Unknown cells written as occupied: free against non-free only, as the SLAM maps of the
+  /// room-segmentation dataset are (there, walls, unknown and outside are all non-free).
+  bool binary = false;
   std::size_t max_cells = 50'000'000;  ///< larger maps are refused (memory: ~5 bytes per cell)
 
   void validate() const {
@@ -92,7 +100,11 @@ struct LidarSlamParams {
     non_negative(furniture_per_m2, "furniture_per_m2");
     positive(furniture_min_m, "furniture_min_m");
     if (!(furniture_max_m >= furniture_min_m)) throw parameter_error("LidarSlamParams::furniture_max_m must be >= furniture_min_m");
+    non_negative(small_clutter_per_m2, "small_clutter_per_m2");
     share(glass_share, "glass_share");
+    share(glass_pass, "glass_pass");
+    non_negative(scan_jitter_m, "scan_jitter_m");
+    non_negative(scan_jitter_rad, "scan_jitter_rad");
     share(outside_hit, "outside_hit");
     if (people < 0 || people > 1000) throw parameter_error("LidarSlamParams::people must be in [0, 1000]");
     if (!(explored_fraction > 0.0 && explored_fraction <= 1.0)) throw parameter_error("LidarSlamParams::explored_fraction must be in (0, 1]");
@@ -182,6 +194,19 @@ inline RayWorld make_ray_world(const OccupancyGrid& plan, const LidarSlamParams&
     }
     ++k;
     ++furniture;
+  }
+  // Small clutter: anywhere in the free space off the walls, not in doorways.
+  const auto small = static_cast<std::size_t>(std::floor(p.small_clutter_per_m2 * free_m2));
+  for (std::size_t k = 0, tries = 0; k < small && tries < 20 * small + 20; ++tries) {
+    const int c = random.integer(0, plan.width() - 1), r = random.integer(0, plan.height() - 1);
+    const double size = random.uniform(0.05, 0.15);
+    const std::size_t i = plan.index(c, r);
+    if (!free[i] || to_wall[i] < size + p.path_clearance_m + 0.3) continue;
+    const int half = static_cast<int>(std::floor(0.5 * size / plan.resolution()));
+    for (int y = std::max(0, r - half); y <= std::min(plan.height() - 1, r + half); ++y) {
+      for (int x = std::max(0, c - half); x <= std::min(plan.width() - 1, c + half); ++x) world.solid[plan.index(x, y)] = 1;
+    }
+    ++k;
   }
   std::vector<bool> solid_seed(world.solid.begin(), world.solid.end());
   world.clearance = chamfer_distance(plan, solid_seed);
@@ -395,7 +420,7 @@ inline double cast_ray(const RayWorld& world, const Eigen::Vector2d& from, doubl
     if (!plan.contains(c, r)) return through_glass && random.chance(p.outside_hit) ? random.uniform(t, p.max_range_m) : -1.0;
     const std::size_t i = plan.index(c, r);
     if (!world.solid[i]) continue;
-    if (world.glass[i] && !through_glass) through_glass = true;
+    if (world.glass[i] && !through_glass) through_glass = random.chance(p.glass_pass);
     if (through_glass && (world.glass[i] || world.outside[i])) {
       if (world.outside[i]) return random.chance(p.outside_hit) ? random.uniform(t, p.max_range_m) : -1.0;
       continue;
@@ -429,23 +454,39 @@ inline SimulatedSlamMap simulate_lidar_slam(const OccupancyGrid& plan, const Lid
   frame.reflected = params.mirror;
   std::vector<Similarity2> to_map(poses.size());
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    Similarity2 local;  // about the true position: turn by the heading error, move by the position error
-    local.rotation = drift.heading[k];
-    local.translation = poses[k].head<2>() + drift.position[k] - Eigen::Rotation2Dd(drift.heading[k]) * poses[k].head<2>();
+    // About the true position: turned by the heading error, moved by the position error, and the
+    // scan's own registration error on top (not in the ground truth: it averages out).
+    const double turn = drift.heading[k] + params.scan_jitter_rad * random.normal();
+    const Eigen::Vector2d jitter = params.scan_jitter_m * Eigen::Vector2d(random.normal(), random.normal());
+    Similarity2 local;
+    local.rotation = turn;
+    local.translation = poses[k].head<2>() + drift.position[k] + jitter - Eigen::Rotation2Dd(turn) * poses[k].head<2>();
     to_map[k] = frame * local;
   }
-  // Ground truth: the rigid motion that best lays the believed scan positions on the true ones.
-  Eigen::Matrix2Xd believed(2, poses.size()), truth(2, poses.size());
+  // Ground truth: the rigid motion that best lays the believed scan positions on the true ones
+  // (least squares, closed form in 2D), with the mirror put back after.
+  std::vector<Eigen::Vector2d> believed(poses.size());
+  Eigen::Vector2d believed_mean = Eigen::Vector2d::Zero(), true_mean = Eigen::Vector2d::Zero();
   for (std::size_t k = 0; k < poses.size(); ++k) {
-    Eigen::Vector2d b = to_map[k] * poses[k].head<2>();
-    if (params.mirror) b.y() = -b.y();  // fit without the reflection, then put it back
-    believed.col(static_cast<Eigen::Index>(k)) = b;
-    truth.col(static_cast<Eigen::Index>(k)) = poses[k].head<2>();
+    believed[k] = to_map[k] * poses[k].head<2>();
+    if (params.mirror) believed[k].y() = -believed[k].y();
+    believed_mean += believed[k];
+    true_mean += poses[k].head<2>();
   }
-  const Eigen::Matrix3d fit = Eigen::umeyama(believed, truth, false);
+  believed_mean /= static_cast<double>(poses.size());
+  true_mean /= static_cast<double>(poses.size());
+  double dot = 0.0, cross = 0.0;
+  for (std::size_t k = 0; k < poses.size(); ++k) {
+    const Eigen::Vector2d a = believed[k] - believed_mean, b = poses[k].head<2>() - true_mean;
+    dot += a.dot(b);
+    cross += a.x() * b.y() - a.y() * b.x();
+  }
+  Similarity2 fit;
+  fit.rotation = std::atan2(cross, dot);
+  fit.translation = true_mean - Eigen::Rotation2Dd(fit.rotation) * believed_mean;
   Similarity2 unmirror;
   unmirror.reflected = params.mirror;
-  out.T_dest_source = Similarity2::from_affine(Eigen::Affine2d(fit)) * unmirror;
+  out.T_dest_source = fit * unmirror;
   for (std::size_t k = 0; k < poses.size(); ++k) {
     out.path.push_back(poses[k].head<2>());
     out.bend_m = std::max(out.bend_m, (out.T_dest_source * (to_map[k] * poses[k].head<2>()) - poses[k].head<2>()).norm());
@@ -519,11 +560,12 @@ inline SimulatedSlamMap simulate_lidar_slam(const OccupancyGrid& plan, const Lid
       seen[i] = 1;
     }
   }
+  const CellState unknown = params.binary ? CellState::occupied : CellState::unknown;
   for (std::size_t i = 0; i < log_odds.size(); ++i) {
-    if (!seen[i]) continue;
-    grid.cells()[i] = log_odds[i] >= params.occupied_log_odds ? CellState::occupied
-                      : log_odds[i] <= params.free_log_odds  ? CellState::free
-                                                              : CellState::unknown;
+    grid.cells()[i] = !seen[i]                                  ? unknown
+                      : log_odds[i] >= params.occupied_log_odds ? CellState::occupied
+                      : log_odds[i] <= params.free_log_odds     ? CellState::free
+                                                                : unknown;
   }
   out.grid = std::move(grid);
   out.pixel_transform = to_pixel_transform(out.T_dest_source, out.grid, plan);
