@@ -61,6 +61,7 @@ TEST_CASE("simulate: the same seed gives the same map, another seed another") {
 TEST_CASE("simulate: walls land on the plan's walls through the ground truth, the bend as asked, the matcher finds it") {
   const OccupancyGrid plan = plan_of(911);
   LidarSlamParams p;
+  p.beams = 271;
   p.rotation_rad = 1.1;
   p.bend_m = 0.2;
   p.people = 0;
