@@ -394,7 +394,7 @@ TEST_CASE("generate --style handheld: a partial scan onto a line-drawn layout, m
   const Run eval = run("eval " + dir + "/pairs.json --no-reflection", false);
   INFO(eval.out);
   CHECK(eval.out.find("correct: 1 / 1") != std::string::npos);
-  CHECK(run("generate " + dir + " --style lidar").status == 2);
+  CHECK(run("generate " + dir + " --style sonar").status == 2);  // lidar is a style since 2026-12-04
 }
 
 TEST_CASE("eval: bad manifests exit 2 naming the pair and field") {
@@ -529,4 +529,46 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
     CHECK_MESSAGE(bad.status == 2, arguments);
     CHECK_MESSAGE(bad.out.find(message) != std::string::npos, bad.out);
   }
+}
+
+TEST_CASE("simulate and generate --style lidar: simulated SLAM maps with ground truth that eval scores; bad input exits 2") {
+  const std::string dir = areamatch_test::temp_dir() + "/simulate";
+  REQUIRE(run("generate " + dir + "/plan --seed 920 --width 18 --height 12").status == 0);
+  const Run simulated = run("simulate " + dir + "/plan/layout.yaml " + dir + "/sim --count 2 --seed 3 --beams 271 --door-width 0.9");
+  INFO(simulated.out);
+  REQUIRE(simulated.status == 0);
+  CHECK(simulated.out.find("wrote " + dir + "/sim/slam_4.png") != std::string::npos);
+  const std::string manifest = read_text(dir + "/sim/pairs.json");
+  CHECK(manifest.find("\"kind\": \"synthetic_lidar\"") != std::string::npos);
+  CHECK(manifest.find("\"door_width_m\": 0.9") != std::string::npos);
+  const Run eval = run("eval " + dir + "/sim/pairs.json", false);
+  INFO(eval.out);
+  CHECK(eval.status == 0);
+  CHECK(eval.out.find("correct: ") != std::string::npos);
+  // The same seed, the same map.
+  REQUIRE(run("simulate " + dir + "/plan/layout.yaml " + dir + "/again --seed 3 --beams 271 --rotation 24.5").status == 0);
+  REQUIRE(run("simulate " + dir + "/plan/layout.yaml " + dir + "/again2 --seed 3 --beams 271 --rotation 24.5").status == 0);
+  CHECK(read_text(dir + "/again/slam_3.png") == read_text(dir + "/again2/slam_3.png"));
+  const Run lidar = run("generate " + dir + "/lidar --seed 921 --width 18 --height 12 --style lidar --beams 271 --mirror");
+  INFO(lidar.out);
+  REQUIRE(lidar.status == 0);
+  CHECK(read_text(dir + "/lidar/pairs.json").find("\"reflected\": true") != std::string::npos);
+  // Bad input: each exits 2 with the option or the reason named.
+  const Run fov = run("simulate " + dir + "/plan/layout.yaml " + dir + "/bad --fov 400");
+  CHECK(fov.status == 2);
+  CHECK(fov.out.find("--fov") != std::string::npos);
+  const Run bend = run("simulate " + dir + "/plan/layout.yaml " + dir + "/bad --bend -1");
+  CHECK(bend.status == 2);
+  CHECK(bend.out.find("--bend") != std::string::npos);
+  const Run missing = run("simulate " + dir + "/nothing.yaml " + dir + "/bad");
+  CHECK(missing.status == 2);
+  CHECK(missing.out.find("nothing.yaml") != std::string::npos);
+  areamatch::save_map(areamatch::OccupancyGrid(30, 20, 0.05, {}, areamatch::CellState::occupied), dir + "/walls.pgm");
+  const Run walls = run("simulate " + dir + "/walls.yaml " + dir + "/bad");
+  CHECK(walls.status == 2);
+  CHECK(walls.out.find("no free space wide enough") != std::string::npos);
+  const Run not_lidar = run("generate " + dir + "/bad --beams 100");
+  CHECK(not_lidar.status == 2);
+  CHECK(not_lidar.out.find("--style lidar") != std::string::npos);
+  CHECK(run("simulate " + dir + "/plan/layout.yaml").status == 2);
 }
