@@ -107,6 +107,9 @@ TEST_CASE("simulate: clutter the plan does not have, a mirror, a broken piece, a
   CHECK(broken.broken);
   CHECK(broken.bend_m > 0.3);  // part of the path turned by 5 degrees does not fit one rigid motion
   p.break_probability = 0.0;
+  LidarSlamParams schematic = p;  // the building as built off its plan by up to 0.4 m
+  schematic.plan_error_m = 0.4;
+  CHECK(surfaces_on_plan(simulate_lidar_slam(plan, schematic, 6), plan) < surfaces_on_plan(simulate_lidar_slam(plan, p, 6), plan) - 0.05);
   p.binary = true;
   const auto counts = simulate_lidar_slam(plan, p, 6).grid.count();
   CHECK(counts.unknown == 0);
@@ -120,6 +123,9 @@ TEST_CASE("simulate: bad parameters and plans are refused with the reason named"
   p = {};
   p.bend_m = -1.0;
   CHECK_THROWS_WITH_AS(simulate_lidar_slam(plan, p, 1), doctest::Contains("bend_m"), parameter_error);
+  p = {};
+  p.plan_error_m = -0.1;
+  CHECK_THROWS_WITH_AS(simulate_lidar_slam(plan, p, 1), doctest::Contains("plan_error_m"), parameter_error);
   p = {};
   p.max_range_m = std::nan("");
   CHECK_THROWS_WITH_AS(simulate_lidar_slam(plan, p, 1), doctest::Contains("max_range_m"), parameter_error);

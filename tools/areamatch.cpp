@@ -182,6 +182,8 @@ const char* kLidarOptionsHelp =
     "  --people N             people near the robot in each scan (default 2)\n"
     "  --explored F           share of the waypoints visited, those nearest the start, 0..1 (default 1)\n"
     "  --bend M               largest drift left after the loop closure, metres (default 0.3)\n"
+    "  --plan-error M         the building as built differs from the plan by a smooth warp of up to\n"
+    "                         M metres, as a schematic plan does (default 0: the plan is exact)\n"
     "  --break P              chance of a broken piece: the path turned by 3 degrees and shifted by\n"
     "                         0.2 m from some scan on, as after a wrong loop closure (default 0)\n"
     "  --robot-resolution R   the SLAM map's metres per cell (default 0.05)\n"
@@ -191,7 +193,7 @@ const char* kLidarOptionsHelp =
     "                         room-segmentation dataset's SLAM maps are\n";
 
 const std::set<std::string> kLidarOptions = {"beams", "fov",   "range", "range-noise", "dropout", "furniture", "glass",
-                                             "people", "explored", "bend", "break", "robot-resolution", "rotation"};
+                                             "people", "explored", "bend", "plan-error", "break", "robot-resolution", "rotation"};
 
 areamatch::LidarSlamParams lidar_params_from(const Args& args) {
   areamatch::LidarSlamParams p;
@@ -208,6 +210,7 @@ areamatch::LidarSlamParams lidar_params_from(const Args& args) {
   p.people = static_cast<int>(args.integer("people", 0, 1000).value_or(p.people));
   p.explored_fraction = args.number("explored", true).value_or(p.explored_fraction);
   p.bend_m = args.number("bend", false, true).value_or(p.bend_m);
+  p.plan_error_m = args.number("plan-error", false, true).value_or(p.plan_error_m);
   p.break_probability = args.number("break", false, true).value_or(p.break_probability);
   p.resolution_m = args.number("robot-resolution", true).value_or(p.resolution_m);
   p.mirror = args.flag("mirror");
@@ -354,7 +357,7 @@ int run_generate(const std::vector<std::string>& tokens) {
   if (style == "lidar") {
     lidar = lidar_params_from(args);
   } else {
-    for (const char* name : {"beams", "fov", "range", "range-noise", "dropout", "furniture", "glass", "people", "bend", "break"}) {
+    for (const char* name : {"beams", "fov", "range", "range-noise", "dropout", "furniture", "glass", "people", "bend", "plan-error", "break"}) {
       if (args.text(name)) throw UsageError(std::string("--") + name + " is a laser-SLAM option: it needs --style lidar");
     }
   }

@@ -29,6 +29,7 @@
 #include <Eigen/Geometry>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -62,6 +63,10 @@ struct LidarSlamParams {
   double path_clearance_m = 0.3;   ///< the path keeps this far from walls and furniture
   double waypoint_spacing_m = 2.5;
   // SLAM's errors.
+  /// The building as built differs from its plan by a smooth warp of at most this size (0: the
+  /// plan is exact). Layouts drawn by hand, or redrawn from a distorted map, are off by 0.3–0.6 m
+  /// in places (shared/maps/README.md); a CAD plan of the building as built is not.
+  double plan_error_m = 0.0;
   double bend_m = 0.3;  ///< largest distance of a scan position from where the ground truth puts it
   /// Each scan's own registration error (independent per scan): what makes SLAM walls a few cells
   /// thick and ragged rather than one clean line.
@@ -111,6 +116,7 @@ struct LidarSlamParams {
     non_negative(path_clearance_m, "path_clearance_m");
     positive(waypoint_spacing_m, "waypoint_spacing_m");
     non_negative(bend_m, "bend_m");
+    non_negative(plan_error_m, "plan_error_m");
     share(break_probability, "break_probability");
     non_negative(break_rotation_rad, "break_rotation_rad");
     non_negative(break_shift_m, "break_shift_m");
@@ -140,16 +146,51 @@ namespace detail {
 /// The plan as the rays see it: solid cells (the plan's non-free cells, furniture), which of
 /// them are glass, and which lie outside (unknown, or deeper than a wall in non-free space).
 struct RayWorld {
-  const OccupancyGrid* plan = nullptr;
+  OccupancyGrid built;  ///< the building as built: the plan, warped by `plan_error_m`
   std::vector<std::uint8_t> solid, glass, outside;
   std::vector<double> clearance;  ///< metres to the nearest solid cell (after furniture)
-  bool solid_at(int c, int r) const { return !plan->contains(c, r) || solid[plan->index(c, r)]; }
 };
 
-inline RayWorld make_ray_world(const OccupancyGrid& plan, const LidarSlamParams& p, std::uint64_t seed, Random& random,
+/// The building as built: `plan` resampled through a smooth displacement field of largest size
+/// `error_m` (two waves per axis, 8–20 m long, random directions and phases), so that its walls
+/// sit up to that far from where the plan draws them, as a schematic plan's do.
+inline OccupancyGrid as_built(const OccupancyGrid& plan, double error_m, Random& random) {
+  if (!(error_m > 0.0)) return plan;
+  struct Wave {
+    Eigen::Vector2d k;
+    double phase;
+  };
+  std::array<std::array<Wave, 2>, 2> waves;
+  for (auto& axis : waves) {
+    for (Wave& w : axis) {
+      const double angle = random.uniform(0.0, 2.0 * pi), length = random.uniform(8.0, 20.0);
+      w.k = (2.0 * pi / length) * Eigen::Vector2d(std::cos(angle), std::sin(angle));
+      w.phase = random.uniform(0.0, 2.0 * pi);
+    }
+  }
+  OccupancyGrid out = plan;
+  const Eigen::Affine2d to_pixel = plan.pixel_from_world();
+  for (int r = 0; r < plan.height(); ++r) {
+    for (int c = 0; c < plan.width(); ++c) {
+      const Eigen::Vector2d w = plan.cell_center(c, r);
+      Eigen::Vector2d d;
+      for (int axis = 0; axis < 2; ++axis) {
+        d[axis] = 0.5 * error_m * (std::sin(waves[axis][0].k.dot(w) + waves[axis][0].phase) +
+                                   std::sin(waves[axis][1].k.dot(w) + waves[axis][1].phase));
+      }
+      const Eigen::Vector2d px = to_pixel * (w + d / std::sqrt(2.0));
+      const int x = static_cast<int>(std::floor(px.x() + 0.5)), y = static_cast<int>(std::floor(px.y() + 0.5));
+      out.set(c, r, plan.contains(x, y) ? plan.at(x, y) : CellState::unknown);
+    }
+  }
+  return out;
+}
+
+inline RayWorld make_ray_world(const OccupancyGrid& drawn, const LidarSlamParams& p, std::uint64_t seed, Random& random,
                                std::size_t& furniture) {
   RayWorld world;
-  world.plan = &plan;
+  world.built = as_built(drawn, p.plan_error_m, random);
+  const OccupancyGrid& plan = world.built;
   const std::size_t n = plan.cells().size();
   world.solid.assign(n, 0);
   std::vector<bool> non_free(n), free(n);
@@ -217,7 +258,7 @@ inline RayWorld make_ray_world(const OccupancyGrid& plan, const LidarSlamParams&
 /// keeps its clearance, in the largest connected part, visited nearest-first (by path length),
 /// joined by shortest paths on a coarse grid, back to the start.
 inline std::vector<Eigen::Vector2d> exploration_path(const RayWorld& world, const LidarSlamParams& p, Random& random) {
-  const OccupancyGrid& plan = *world.plan;
+  const OccupancyGrid& plan = world.built;
   const double cell_m = std::max(plan.resolution(), 0.2);
   const int step = std::max(1, static_cast<int>(std::lround(cell_m / plan.resolution())));
   const int w = (plan.width() + step - 1) / step, h = (plan.height() + step - 1) / step;
@@ -399,7 +440,7 @@ inline Drift odometry_drift(const std::vector<Eigen::Vector3d>& poses, const Lid
 /// The range of one beam in the true world, or a negative value when it returns nothing.
 inline double cast_ray(const RayWorld& world, const Eigen::Vector2d& from, double angle, const LidarSlamParams& p,
                        const std::vector<Eigen::Vector2d>& people, Random& random) {
-  const OccupancyGrid& plan = *world.plan;
+  const OccupancyGrid& plan = world.built;
   const Eigen::Vector2d dir(std::cos(angle), std::sin(angle));
   double limit = p.max_range_m;
   constexpr double person_radius_m = 0.25;
