@@ -27,14 +27,16 @@ namespace {
 using areamatch::CellState;
 using areamatch::OccupancyGrid;
 
-/// Per cell, whether a cell of `grid` in state `state` lies within `radius` cells.
-std::vector<char> near_state(const OccupancyGrid& grid, CellState state, int radius) {
+/// Per cell, whether a cell of `grid` that `take(state)` accepts lies within `radius` cells
+/// (a square: rows, then columns).
+template <class Take>
+std::vector<char> near_cells(const OccupancyGrid& grid, int radius, Take take) {
   const int w = grid.width(), h = grid.height();
   std::vector<char> rows(static_cast<std::size_t>(w) * h, 0), out(rows.size(), 0);
   for (int y = 0; y < h; ++y) {
     for (int x = 0; x < w; ++x) {
       bool any = false;
-      for (int dx = -radius; dx <= radius && !any; ++dx) any = grid.contains(x + dx, y) && grid.at(x + dx, y) == state;
+      for (int dx = -radius; dx <= radius && !any; ++dx) any = grid.contains(x + dx, y) && take(grid.at(x + dx, y));
       rows[grid.index(x, y)] = any;
     }
   }
@@ -46,6 +48,10 @@ std::vector<char> near_state(const OccupancyGrid& grid, CellState state, int rad
     }
   }
   return out;
+}
+
+std::vector<char> near_state(const OccupancyGrid& grid, CellState state, int radius) {
+  return near_cells(grid, radius, [state](CellState s) { return s == state; });
 }
 
 bool next_to(const OccupancyGrid& g, int x, int y, CellState state) {
@@ -106,25 +112,7 @@ int main(int argc, char** argv) try {
     // Against the plan, through the ground truth (pixel → pixel).
     const areamatch::PixelTransform& T = *pair.ground_truth;
     const int reach = std::max(1, static_cast<int>(std::lround(0.15 / plan.resolution())));
-    std::vector<char> plan_solid_near(static_cast<std::size_t>(plan.width()) * plan.height(), 0);
-    {
-      const int w = plan.width(), h = plan.height();
-      std::vector<char> rows(plan_solid_near.size(), 0);
-      for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-          bool any = false;
-          for (int dx = -reach; dx <= reach && !any; ++dx) any = plan.contains(x + dx, y) && plan.at(x + dx, y) != CellState::free;
-          rows[plan.index(x, y)] = any;
-        }
-      }
-      for (int y = 0; y < h; ++y) {
-        for (int x = 0; x < w; ++x) {
-          bool any = false;
-          for (int dy = -reach; dy <= reach && !any; ++dy) any = plan.contains(x, y + dy) && rows[plan.index(x, y + dy)];
-          plan_solid_near[plan.index(x, y)] = any;
-        }
-      }
-    }
+    const std::vector<char> plan_solid_near = near_cells(plan, reach, [](CellState s) { return s != CellState::free; });
     std::size_t off = 0, mapped = 0;
     for (int y = 0; y < map.height(); ++y) {
       for (int x = 0; x < map.width(); ++x) {
