@@ -3,25 +3,18 @@
 /// SLAM's errors in a simulated map (simulate.hpp): odometry drift with an imperfect loop
 /// closure, each scan's registration error, a broken piece; and the ground truth they leave.
 
-#include "../detail/format.hpp"
 #include "../detail/random.hpp"
-#include "../error.hpp"
-#include "../grid.hpp"
-#include "../synthetic.hpp"
 #include "../transform.hpp"
+#include "params.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
-#include <string>
 #include <vector>
-#include "params.hpp"
 
 namespace areamatch::detail {
 

@@ -7,14 +7,12 @@
 #include "../detail/random.hpp"
 #include "../error.hpp"
 #include "../grid.hpp"
-#include "../synthetic.hpp"
-#include "../transform.hpp"
+#include "params.hpp"
+#include "world.hpp"
 
 #include <Eigen/Core>
-#include <Eigen/Geometry>
 
 #include <algorithm>
-#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -22,8 +20,6 @@
 #include <limits>
 #include <string>
 #include <vector>
-#include "params.hpp"
-#include "world.hpp"
 
 namespace areamatch::detail {
 

@@ -3,12 +3,12 @@
 /// The world a simulated laser's rays meet (simulate.hpp): the building as built, furniture,
 /// clutter, glass panes in outer walls, people; and one ray cast through it.
 
-#include "../detail/format.hpp"
 #include "../detail/random.hpp"
 #include "../error.hpp"
 #include "../grid.hpp"
 #include "../synthetic.hpp"
 #include "../transform.hpp"
+#include "params.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
@@ -18,10 +18,8 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
-#include <limits>
 #include <string>
 #include <vector>
-#include "params.hpp"
 
 namespace areamatch::detail {
 
