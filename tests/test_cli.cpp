@@ -328,6 +328,8 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   CHECK(always.status == 0);
   CHECK(always.out.find("with lower wall agreement <= 2, or p_correct >= 0.85") != std::string::npos);
   CHECK(run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 2").status == 2);
+  CHECK(run("calibrate " + out + "/results.csv --choose-on real").out.find("--choose-on needs --choose-rule") != std::string::npos);
+  CHECK(run("calibrate " + out + "/results.csv --choose-rule --choose-on some").status == 2);
   CHECK(read_text(out + "/reliability.svg").find("<svg") != std::string::npos);
   CHECK(run("calibrate " + out + "/missing.csv").status == 2);
   CHECK(run("calibrate").status == 2);

@@ -1049,6 +1049,11 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   if (const auto out = args.text("predictions")) {
     areamatch::write_text_file(*out, predictions_csv(rows, buildings, predicted, in_sample, rule));
   }
+  if (!args.flag("choose-rule")) {
+    for (const char* name : {"choose-on", "max-false-accept"}) {
+      if (args.text(name)) throw UsageError(std::string("--") + name + " needs --choose-rule");
+    }
+  }
   if (args.flag("choose-rule")) {
     const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
     if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
