@@ -192,8 +192,16 @@ const char* kLidarOptionsHelp =
     "  --binary               unknown written as occupied (free against non-free only), as the\n"
     "                         room-segmentation dataset's SLAM maps are\n";
 
-const std::set<std::string> kLidarOptions = {"beams", "fov",   "range", "range-noise", "dropout", "furniture", "glass",
-                                             "people", "explored", "bend", "plan-error", "break", "robot-resolution", "rotation"};
+/// The laser-SLAM options `generate` has only with --style lidar, and all of them (`generate`
+/// shares --explored, --robot-resolution and --rotation with its other styles).
+const std::set<std::string> kLidarOwnOptions = {"beams", "fov",    "range", "range-noise", "dropout",
+                                                "furniture", "glass", "people", "bend", "plan-error", "break"};
+const std::set<std::string> kLidarOptions = merged(kLidarOwnOptions, {"explored", "robot-resolution", "rotation"});
+
+/// A set's turn of map `seed` in degrees: golden-angle steps over a set (`count` given), else 37.
+double default_turn_deg(std::uint64_t seed, bool in_a_set) {
+  return in_a_set ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
+}
 
 areamatch::LidarSlamParams lidar_params_from(const Args& args) {
   areamatch::LidarSlamParams p;
@@ -357,8 +365,8 @@ int run_generate(const std::vector<std::string>& tokens) {
   if (style == "lidar") {
     lidar = lidar_params_from(args);
   } else {
-    for (const char* name : {"beams", "fov", "range", "range-noise", "dropout", "furniture", "glass", "people", "bend", "plan-error", "break"}) {
-      if (args.text(name)) throw UsageError(std::string("--") + name + " is a laser-SLAM option: it needs --style lidar");
+    for (const std::string& name : kLidarOwnOptions) {
+      if (args.text(name)) throw UsageError("--" + name + " is a laser-SLAM option: it needs --style lidar");
     }
   }
   areamatch::BuildingParams building_params;
@@ -388,7 +396,7 @@ int run_generate(const std::vector<std::string>& tokens) {
   std::vector<std::string> entries;
   for (std::uint64_t seed = first_seed; seed < first_seed + static_cast<std::uint64_t>(count.value_or(1)); ++seed) {
     // A set turns each robot map differently (golden-angle steps) unless --rotation is given.
-    const double deg = rotation_deg ? *rotation_deg : count ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
+    const double deg = rotation_deg ? *rotation_deg : default_turn_deg(seed, count.has_value());
     robot_params.rotation_rad = deg * areamatch::pi / 180.0;
     if (lidar) lidar->rotation_rad = robot_params.rotation_rad;
     const std::string folder = "pair_" + std::to_string(seed);
@@ -396,13 +404,7 @@ int run_generate(const std::vector<std::string>& tokens) {
     entries.push_back(count ? generate_pair(out + "/" + folder, folder + "/", seed, building_params, robot_params, layout_line_width_m, simulated)
                             : generate_pair(out, "", seed, building_params, robot_params, layout_line_width_m, simulated));
   }
-  std::ostringstream manifest;
-  manifest << "{\n \"description\": \"Synthetic pairs written by 'areamatch generate'. pixel_transform maps a source "
-           << "pixel (col, row) to a destination pixel.\",\n"
-           << " \"correct_if\": {\"max_rotation_error_deg\": 3.0, \"max_mean_displacement_m\": 0.5},\n \"pairs\": [\n";
-  for (std::size_t i = 0; i < entries.size(); ++i) manifest << entries[i] << (i + 1 < entries.size() ? ",\n" : "\n");
-  manifest << " ]\n}\n";
-  areamatch::write_text_file(out + "/pairs.json", manifest.str());
+  areamatch::write_text_file(out + "/pairs.json", manifest_of(entries, "Synthetic pairs written by 'areamatch generate'.", 0.5));
   std::cout << "ground truth of " << entries.size() << " pair(s) in " << out << "/pairs.json\n";
   return 0;
 }
@@ -443,7 +445,7 @@ int run_simulate(const std::vector<std::string>& tokens) {
   const std::string destination = std::filesystem::absolute(plan_path).lexically_normal().string();
   std::vector<std::string> entries;
   for (std::uint64_t seed = first_seed; seed < first_seed + static_cast<std::uint64_t>(count.value_or(1)); ++seed) {
-    const double deg = rotation_deg ? *rotation_deg : count ? std::fmod(137.5 * static_cast<double>(seed), 360.0) : 37.0;
+    const double deg = rotation_deg ? *rotation_deg : default_turn_deg(seed, count.has_value());
     params.rotation_rad = deg * areamatch::pi / 180.0;
     const areamatch::SimulatedSlamMap map = areamatch::simulate_lidar_slam(plan, params, seed);
     const std::string name = "slam_" + std::to_string(seed);

@@ -60,8 +60,7 @@ inline SimulatedSlamMap simulate_lidar_slam(const OccupancyGrid& plan, const Lid
     out.path.push_back(poses[k].head<2>());
     out.bend_m = std::max(out.bend_m, (out.T_dest_source * (to_map[k] * poses[k].head<2>()) - poses[k].head<2>()).norm());
   }
-  OccupancyGrid grid = detail::integrate_beams(detail::cast_scans(world, poses, to_map, params, random), params);
-  out.grid = std::move(grid);
+  out.grid = detail::integrate_beams(detail::cast_scans(world, poses, to_map, params, random), params);
   out.pixel_transform = to_pixel_transform(out.T_dest_source, out.grid, plan);
   return out;
 }

@@ -53,6 +53,11 @@ inline std::array<MapRole, 2> roles_of_kind(const std::string& kind) {
 /// Map path (canonical) -> role, from every pair of one building read, ambiguous ones included.
 using MapRoles = std::map<std::string, MapRole>;
 
+inline MapRole role_of(const MapRoles& roles, const std::string& map) {
+  const auto it = roles.find(map);
+  return it == roles.end() ? MapRole::unknown : it->second;
+}
+
 /// One labelled row of an eval CSV.
 struct CalibrationRow {
   std::string name, kind, source, destination;
@@ -205,10 +210,7 @@ struct JudgingBuildings {
 inline JudgingBuildings judging_buildings(const std::vector<CalibrationRow>& rows, std::size_t buildings, const MapRoles& roles) {
   JudgingBuildings out;
   out.judges.assign(buildings, 0);
-  auto generated = [&](const std::string& map) {
-    const auto it = roles.find(map);
-    return it != roles.end() && it->second == MapRole::generated;
-  };
+  auto generated = [&](const std::string& map) { return role_of(roles, map) == MapRole::generated; };
   for (const auto& r : rows) {
     if (!generated(r.source)) out.judges[static_cast<std::size_t>(r.source_building)] = 1;
     if (!generated(r.destination)) out.judges[static_cast<std::size_t>(r.dest_building)] = 1;
@@ -228,11 +230,7 @@ inline JudgingBuildings judging_buildings(const std::vector<CalibrationRow>& row
 
 /// The modality a row belongs to: its two maps' roles, source first ("SLAM map -> layout").
 inline std::string modality(const CalibrationRow& r, const MapRoles& roles) {
-  auto role = [&](const std::string& map) {
-    const auto it = roles.find(map);
-    return role_name(it == roles.end() ? MapRole::unknown : it->second);
-  };
-  return std::string(role(r.source)) + " -> " + role(r.destination);
+  return std::string(role_name(role_of(roles, r.source))) + " -> " + role_name(role_of(roles, r.destination));
 }
 
 /// Outcome counts of a decision on some rows.
@@ -367,36 +365,6 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
   return best;
 }
 
-/// Leave-one-building-out predictions of rows `judged` (a subset of `train`) from models fitted on
-/// rows of `train` alone: one fold per building that `judged` touches, fitted on the rows of
-/// `train` that do not touch it. In the order of `judged`; a row of two
-/// buildings keeps the less favourable prediction, as `areamatch::leave_one_building_out` does.
-inline std::vector<double> held_out_predictions(const std::vector<CalibrationRow>& rows, const std::vector<std::size_t>& train,
-                                                const std::vector<std::size_t>& judged, const JudgingBuildings& judging,
-                                                double l2, const areamatch::DecisionParams& base) {
-  std::vector<double> predicted(judged.size(), -1.0);
-  for (std::size_t held = 0; held < judging.judges.size(); ++held) {
-    auto touches = [&](std::size_t i) { return rows[i].buildings()[0] == held || rows[i].buildings()[1] == held; };
-    std::vector<std::size_t> test;
-    for (std::size_t k = 0; k < judged.size(); ++k) {
-      if (touches(judged[k])) test.push_back(k);
-    }
-    if (test.empty()) continue;
-    std::vector<areamatch::DecisionSample> samples;
-    for (std::size_t i : train) {
-      if (!touches(i)) samples.push_back(rows[i].sample);
-    }
-    const areamatch::DecisionParams model = areamatch::fit_decision(samples, l2, base);
-    for (std::size_t k : test) {
-      const CalibrationRow& r = rows[judged[k]];
-      const double p = areamatch::p_correct(r.sample.features, model);
-      double& out = predicted[k];
-      out = out < 0.0 ? p : r.sample.correct ? std::min(out, p) : std::max(out, p);
-    }
-  }
-  return predicted;
-}
-
 /// Nested leave-one-building-out cross-validation of the whole procedure: for each judging (real)
 /// building, the model is fitted and the rule's thresholds chosen (`choose_rule` on the other
 /// buildings' rows, all or real ones alone, and their own leave-one-building-out predictions) without any pair
@@ -412,6 +380,7 @@ inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>
     if (!judging.judges[held]) continue;  // generated buildings train, they do not judge
     std::vector<std::size_t> train, test;
     std::vector<areamatch::DecisionSample> samples;
+    std::vector<std::array<std::size_t, 2>> groups;
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& r = rows[i];
       const std::array<std::size_t, 2> b = r.buildings();
@@ -420,6 +389,7 @@ inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>
       } else {
         train.push_back(i);
         samples.push_back(r.sample);
+        groups.push_back(b);
       }
     }
     if (test.empty()) continue;
@@ -427,11 +397,15 @@ inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>
     // each predicted by a model fitted without its buildings (the inner leave-one-building-out).
     // Choosing on real rows alone is unstable with few real buildings: without F5 the fold chose
     // a gate that accepted 3 % of F5's pairs of different places (docs/evaluation.md).
+    const std::vector<double> train_predicted = areamatch::leave_one_building_out(samples, groups, l2, base);
     std::vector<std::size_t> inner;
-    for (std::size_t i : train) {
-      if (choose_on_all || judging.judged(i)) inner.push_back(i);
+    std::vector<double> inner_predicted;
+    for (std::size_t k = 0; k < train.size(); ++k) {
+      if (!choose_on_all && !judging.judged(train[k])) continue;
+      inner.push_back(train[k]);
+      inner_predicted.push_back(train_predicted[k]);
     }
-    const Rule rule = choose_rule(rows, inner, held_out_predictions(rows, train, inner, judging, l2, base), max_false_accept);
+    const Rule rule = choose_rule(rows, inner, inner_predicted, max_false_accept);
     chosen.push_back(rule);
     const areamatch::DecisionParams model = areamatch::fit_decision(samples, l2, base);
     for (std::size_t i : test) {
@@ -443,7 +417,14 @@ inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>
   return std::vector<signed char>(verdict.begin(), verdict.end());
 }
 
-inline std::string percent(std::size_t part, std::size_t whole);
+inline std::string percent(std::size_t part, std::size_t whole) {
+  if (whole == 0) return "-";
+  std::ostringstream s;
+  s.setf(std::ios::fixed);
+  s.precision(1);
+  s << 100.0 * static_cast<double>(part) / static_cast<double>(whole) << " %";
+  return s.str();
+}
 
 /// One table line of counts: name | right | false rejects (%) | wrong of one building | accepted |
 /// different buildings | accepted (%).
@@ -491,14 +472,6 @@ inline std::string judged_report(const std::vector<CalibrationRow>& rows, const 
   return out;
 }
 
-inline std::string percent(std::size_t part, std::size_t whole) {
-  if (whole == 0) return "-";
-  std::ostringstream s;
-  s.setf(std::ios::fixed);
-  s.precision(1);
-  s << 100.0 * static_cast<double>(part) / static_cast<double>(whole) << " %";
-  return s.str();
-}
 
 /// One bin of a reliability table: its rows, their mean prediction, the share of right answers
 /// among them, and that share with both classes weighted equally in total (the prior the model is

@@ -27,9 +27,17 @@ namespace areamatch::detail {
 /// them are glass, and which lie outside (unknown, or deeper than a wall in non-free space).
 struct RayWorld {
   OccupancyGrid built;  ///< the building as built: the plan, warped by `plan_error_m`
+  Eigen::Affine2d to_pixel = Eigen::Affine2d::Identity();  ///< `built.pixel_from_world()`, once for every ray
   std::vector<std::uint8_t> solid, glass, outside;
   std::vector<double> clearance;  ///< metres to the nearest solid cell (after furniture)
 };
+
+/// Marks the cells of `built` within `half_cols` / `half_rows` of (col, row) in `solid`.
+inline void fill_solid_box(const OccupancyGrid& built, int col, int row, int half_cols, int half_rows, std::vector<std::uint8_t>& solid) {
+  for (int y = std::max(0, row - half_rows); y <= std::min(built.height() - 1, row + half_rows); ++y) {
+    for (int x = std::max(0, col - half_cols); x <= std::min(built.width() - 1, col + half_cols); ++x) solid[built.index(x, y)] = 1;
+  }
+}
 
 /// The building as built: `plan` resampled through a smooth displacement field of largest size
 /// `error_m` (two waves per axis, 8–20 m long, random directions and phases), so that its walls
@@ -70,6 +78,7 @@ inline RayWorld make_ray_world(const OccupancyGrid& drawn, const LidarSlamParams
                                std::size_t& furniture) {
   RayWorld world;
   world.built = as_built(drawn, p.plan_error_m, random);
+  world.to_pixel = world.built.pixel_from_world();
   const OccupancyGrid& plan = world.built;
   const std::size_t n = plan.cells().size();
   world.solid.assign(n, 0);
@@ -109,10 +118,8 @@ inline RayWorld make_ray_world(const OccupancyGrid& drawn, const LidarSlamParams
     const double w = random.uniform(p.furniture_min_m, p.furniture_max_m), h = random.uniform(p.furniture_min_m, p.furniture_max_m);
     const std::size_t i = plan.index(c, r);
     if (!free[i] || to_wall[i] < 0.5 * std::hypot(w, h) + p.path_clearance_m + 0.4) continue;
-    const int half_w = static_cast<int>(std::ceil(0.5 * w / plan.resolution())), half_h = static_cast<int>(std::ceil(0.5 * h / plan.resolution()));
-    for (int y = std::max(0, r - half_h); y <= std::min(plan.height() - 1, r + half_h); ++y) {
-      for (int x = std::max(0, c - half_w); x <= std::min(plan.width() - 1, c + half_w); ++x) world.solid[plan.index(x, y)] = 1;
-    }
+    fill_solid_box(plan, c, r, static_cast<int>(std::ceil(0.5 * w / plan.resolution())),
+                   static_cast<int>(std::ceil(0.5 * h / plan.resolution())), world.solid);
     ++k;
     ++furniture;
   }
@@ -124,9 +131,7 @@ inline RayWorld make_ray_world(const OccupancyGrid& drawn, const LidarSlamParams
     const std::size_t i = plan.index(c, r);
     if (!free[i] || to_wall[i] < size + p.path_clearance_m + 0.3) continue;
     const int half = static_cast<int>(std::floor(0.5 * size / plan.resolution()));
-    for (int y = std::max(0, r - half); y <= std::min(plan.height() - 1, r + half); ++y) {
-      for (int x = std::max(0, c - half); x <= std::min(plan.width() - 1, c + half); ++x) world.solid[plan.index(x, y)] = 1;
-    }
+    fill_solid_box(plan, c, r, half, half, world.solid);
     ++k;
   }
   std::vector<bool> solid_seed(world.solid.begin(), world.solid.end());
@@ -150,7 +155,7 @@ inline double cast_ray(const RayWorld& world, const Eigen::Vector2d& from, doubl
       limit = std::min(limit, along - std::sqrt(person_radius_m * person_radius_m - off2));
     }
   }
-  const Eigen::Affine2d to_pixel = plan.pixel_from_world();
+  const Eigen::Affine2d& to_pixel = world.to_pixel;
   const double step = 0.5 * plan.resolution();
   bool through_glass = false;
   for (double t = 0.0; t < limit; t += step) {
