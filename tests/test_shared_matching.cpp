@@ -61,6 +61,17 @@ const std::vector<JudgedRow>& shared_cross_rows(const std::string& shared) {
   return rows;
 }
 
+/// The buildings of `rows`' maps: maps joined by a pair of one building are one building.
+BuildingGroups building_groups(const std::vector<const JudgedRow*>& rows) {
+  BuildingGroups buildings;
+  for (const JudgedRow* r : rows) {
+    buildings.add(r->pair.source);
+    buildings.add(r->pair.destination);
+    if (!r->pair.different_buildings) buildings.join(r->pair.source, r->pair.destination);
+  }
+  return buildings;
+}
+
 }  // namespace
 
 /// Known failures (issue 42): the Intel Research Lab's cluttered, bent SLAM map onto its schematic
@@ -144,12 +155,7 @@ TEST_CASE("the decision fitted without any real SLAM building judges the SLAM ma
     if (!r.pair.ambiguous) rows.push_back(&r);
   }
   for (const JudgedRow& r : shared_cross_rows(shared)) rows.push_back(&r);
-  BuildingGroups buildings;
-  for (const JudgedRow* r : rows) {
-    buildings.add(r->pair.source);
-    buildings.add(r->pair.destination);
-    if (!r->pair.different_buildings) buildings.join(r->pair.source, r->pair.destination);
-  }
+  BuildingGroups buildings = building_groups(rows);
   std::set<std::size_t> slam_buildings;
   for (const JudgedRow& r : shared_pair_rows(shared)) {  // ambiguous ones too: freiburg79's SLAM maps
     if (r.pair.kind == "slam_to_layout") slam_buildings.insert(buildings.building(r.pair.source));
@@ -319,14 +325,11 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
     if (!r.pair.ambiguous) rows.push_back(r);
   }
   for (const JudgedRow& r : shared_cross_rows(shared)) rows.push_back(r);
-  BuildingGroups buildings;
+  std::vector<const JudgedRow*> row_pointers;
+  for (const JudgedRow& r : rows) row_pointers.push_back(&r);
+  BuildingGroups buildings = building_groups(row_pointers);
   std::vector<DecisionSample> samples;
   std::vector<std::array<std::size_t, 2>> building_of;
-  for (const JudgedRow& r : rows) {
-    buildings.add(r.pair.source);
-    buildings.add(r.pair.destination);
-    if (!r.pair.different_buildings) buildings.join(r.pair.source, r.pair.destination);
-  }
   for (const JudgedRow& r : rows) {
     samples.push_back({decision_features(r.row.result), r.right});
     building_of.push_back({buildings.building(r.pair.source), buildings.building(r.pair.destination)});
