@@ -1,4 +1,4 @@
-// The areamatch program: help, info, generate, segment, match, eval, and exit status 2 with a
+// The areamatch program: help, info, generate, segment, match, warp, eval, and exit status 2 with a
 // message for bad input.
 #include <doctest/doctest.h>
 
@@ -247,6 +247,67 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   CHECK(gated.status == 1);
   CHECK(gated.out.find("gate_max_lower_walls") != std::string::npos);
   CHECK(run("match " + cross + " --gate-max-lower-walls 2").status == 0);
+}
+
+TEST_CASE("warp: points carried across line for line, a resampled map, JSON; bad input exits 2, no match exits 1") {
+  const std::string dir = areamatch_test::temp_dir() + "/warp_pair";
+  REQUIRE(run("generate " + dir + " --seed 7 --width 18 --height 13 --rotation 30").status == 0);
+  const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
+  const std::string points = dir + "/points.csv";
+  areamatch::detail::write_file_text(points, "# col,row\n10,12\n\n 40.5 , 33\n");
+  const Run carried = run("warp " + pair + " --points " + points + " --out " + dir + "/out.csv --grid " + dir + "/onto.yaml");
+  INFO(carried.out);
+  REQUIRE(carried.status == 0);
+  CHECK(carried.out.find("under the warp") != std::string::npos);
+  std::istringstream lines(read_text(dir + "/out.csv"));
+  std::vector<std::string> out;
+  for (std::string line; std::getline(lines, line);) out.push_back(line);
+  REQUIRE(out.size() == 4);  // one line per input line
+  CHECK(out[0] == "# col,row");
+  CHECK(out[2].empty());
+  CHECK(std::count(out[1].begin(), out[1].end(), ',') == 1);
+  CHECK(std::count(out[3].begin(), out[3].end(), ',') == 1);
+  const Run info = run("info " + dir + "/onto.yaml --json");
+  CHECK(info.status == 0);
+  const Run layout_info = run("info " + dir + "/layout.yaml --json");
+  auto field = [](const std::string& json, const std::string& key) {
+    const auto at = json.find("\"" + key + "\": ");
+    return at == std::string::npos ? std::string() : json.substr(at, json.find_first_of(",}", at) - at);
+  };
+  CHECK(field(info.out, "width") == field(layout_info.out, "width"));
+  CHECK(field(info.out, "height") == field(layout_info.out, "height"));
+  // JSON: the match, the warp's figures and the points, exactly one object.
+  const Run json = run("warp " + pair + " --points " + points + " --json", false);
+  REQUIRE(json.status == 0);
+  CHECK(json.out.rfind("{\"match\": {\"ok\": true", 0) == 0);
+  CHECK(json.out.find('\n') == json.out.size() - 1);
+  for (const char* key : {"\"warp\"", "\"rigid_median_m\"", "\"warped_median_m\"", "\"max_displacement_m\"", "\"points\": [["}) {
+    CHECK_MESSAGE(json.out.find(key) != std::string::npos, key);
+  }
+  // Bad input: exit 2, the problem named.
+  areamatch::detail::write_file_text(dir + "/bad.csv", "10,12\n10;twelve\n");
+  const Run malformed = run("warp " + pair + " --points " + dir + "/bad.csv");
+  CHECK(malformed.status == 2);
+  CHECK(malformed.out.find("bad.csv:2") != std::string::npos);
+  areamatch::detail::write_file_text(dir + "/outside.csv", "100000,5\n");
+  const Run outside = run("warp " + pair + " --points " + dir + "/outside.csv");
+  CHECK(outside.status == 2);
+  CHECK(outside.out.find("outside SOURCE") != std::string::npos);
+  const Run missing = run("warp " + pair + " --points " + dir + "/missing.csv");
+  CHECK(missing.status == 2);
+  CHECK(missing.out.find("missing.csv") != std::string::npos);
+  CHECK(run("warp " + pair + " --out " + dir + "/x.csv").status == 2);  // --out without --points
+  CHECK(run("warp " + pair + " --bend-length 0").status == 2);
+  CHECK(run("warp " + pair + " --control-spacing -1").status == 2);
+  // A pair that does not match (another building's layout): exit 1, nothing warped (never a
+  // silent identity warp).
+  const std::string other = areamatch_test::temp_dir() + "/warp_other";
+  REQUIRE(run("generate " + other + " --seed 1234 --width 24 --height 26").status == 0);
+  const Run refused = run("warp " + dir + "/robot.yaml " + other + "/layout.yaml --points " + points + " --out " + dir +
+                          "/refused.csv");
+  CHECK(refused.status == 1);
+  CHECK(refused.out.find("nothing warped") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir + "/refused.csv"));
 }
 
 TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth") {

@@ -201,6 +201,7 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   r.evidence.agreement = 0.85;
   r.evidence.reverse_wall_agreement = 0.9;
   r.evidence.forward_wall_agreement = 0.45;  // lab_b-like: the SLAM map's clutter unexplained
+  r.evidence.overlap_m2 = 283.0;             // ... on a whole floor
   r.p_correct = 0.2;
   CHECK(detail::passes_agreement_gate(r.evidence, params));
   CHECK(detail::refusal(r, params, true).empty());
@@ -219,11 +220,41 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   r.evidence.forward_wall_agreement = std::numeric_limits<double>::quiet_NaN();  // not measured: lower 0
   CHECK(lower_wall_agreement(r.evidence) == 0.0);
   CHECK(detail::passes_agreement_gate(r.evidence, params));
-  // The paper's preset answers whatever the walls.
+  // The paper's preset answers whatever the walls and the overlap.
   CHECK(MatcherParams::paper().gate_max_lower_walls > 1.0);
+  CHECK(MatcherParams::paper().gate_min_overlap_m2 == 0.0);
   MatcherParams bad;
   bad.gate_max_lower_walls = -0.1;
   CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_max_lower_walls"), parameter_error);
+  bad = params;
+  bad.gate_min_overlap_m2 = -1.0;
+  CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_min_overlap_m2"), parameter_error);
+}
+
+TEST_CASE("the agreement gate needs enough shared free space: walls that agree on one room prove little") {
+  // F5_02, a scan of one office, onto an apartment's scan: agreement 0.874, lower walls 0.31, but
+  // 43 m² shared and p_correct 0.09 — the gate alone accepted it before.
+  const MatcherParams params;
+  MatchResult r;
+  r.score = 0.5;
+  r.confidence = 0.05;
+  r.evidence.agreement = 0.874;
+  r.evidence.reverse_wall_agreement = 0.97;
+  r.evidence.forward_wall_agreement = 0.31;
+  r.evidence.overlap_m2 = 42.9;
+  r.p_correct = 0.09;
+  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params));
+  const std::string refused = detail::refusal(r, params, true);
+  CHECK(refused.find("gate_min_overlap_m2 100") != std::string::npos);
+  CHECK(refused.find("42.9") != std::string::npos);
+  r.p_correct = 0.9;  // the model may still accept it alone
+  CHECK(detail::refusal(r, params, true).empty());
+  r.p_correct = 0.09;
+  MatcherParams any = params;
+  any.gate_min_overlap_m2 = 0.0;  // the rule before 2026-12-04
+  CHECK(detail::refusal(r, any, true).empty());
+  r.evidence.overlap_m2 = 231.0;  // the least any right answer through the gate shares on the real maps
+  CHECK(detail::passes_agreement_gate(r.evidence, params));
 }
 
 TEST_CASE("the turn margin: a right answer lies better than its own quarter turns and mirror images") {

@@ -3,6 +3,7 @@
 //   areamatch info MAP            size, resolution, origin and cell fractions of a map
 //   areamatch segment MAP         the map's Area Graph, with pictures, labels and JSON
 //   areamatch match SOURCE DEST   the transform between two maps, with a picture and JSON
+//   areamatch warp SOURCE DEST    a smooth warp beyond the rigid transform; carries points across
 //   areamatch merge MAP MAP...    several maps in one frame, fused into one map
 //   areamatch eval MANIFEST       every pair of a manifest, scored against its ground truth
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
@@ -26,6 +27,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <iostream>
 #include <map>
@@ -538,11 +540,8 @@ int run_segment(const std::vector<std::string>& tokens) {
 
 // --------------------------------------------------------------------------------------- match
 
-const char* kMatchHelp =
-    "usage: areamatch match SOURCE DEST [options]\n"
-    "Finds the transform that lays map SOURCE onto map DEST (both ROS YAML, PNG or PGM).\n"
-    "Exit status: 0 matched, 1 no acceptable match (with the reason), 2 bad input or usage.\n"
-    "Options:\n"
+// The options of matching one pair, shared by match and warp.
+const char* kPairOptionsHelp =
     "  --source-resolution R   metres per pixel of SOURCE (default: its YAML, else 0.05)\n"
     "  --dest-resolution R     metres per pixel of DEST (default: its YAML, else 0.05)\n"
     "  --door-width M          door width for both maps, metres (default 1.2, see segment --help)\n"
@@ -561,25 +560,18 @@ const char* kMatchHelp =
     "                          see docs/evaluation.md)\n"
     "  --gate-max-lower-walls W  at or above --min-agreement, accept on the agreement alone only where the\n"
     "                          lower of the two wall agreements is at most W (default 0.7; above 1: always)\n"
+    "  --gate-min-overlap M2   ... and the maps share at least M2 square metres of free space (default 100;\n"
+    "                          0: whatever the overlap)\n"
     "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
-    "                          per core); the same result for any N\n"
-    "  --json                  print exactly one JSON object on stdout\n"
-    "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
-    "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n"
-    "  --labels OUT.png        16-bit PNG the size of SOURCE: each pixel of a SOURCE area holds the id + 1 of\n"
-    "                          the DEST area it corresponds to (0: none), to carry room labels over;\n"
-    "                          written only when matched. The JSON lists the pairs with their local transforms\n";
+    "                          per core); the same result for any N\n";
 
-int run_match(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"allow-reflection", "paper", "json", "estimate-scale", "help"},
-                  {"source-resolution", "dest-resolution", "door-width", "source-door-width", "dest-door-width", "k",
-                   "min-score", "min-agreement", "gate-max-lower-walls", "min-p-correct", "png", "svg", "labels",
-                   "threads"});
-  if (args.flag("help")) {
-    std::cout << kMatchHelp;
-    return 0;
-  }
-  args.expect_positional(2, "SOURCE DEST");
+const std::set<std::string> kPairFlags = {"allow-reflection", "paper", "estimate-scale", "help"};
+const std::set<std::string> kPairOptions = {"source-resolution", "dest-resolution", "door-width", "source-door-width",
+                                            "dest-door-width", "k", "min-score", "min-agreement", "gate-max-lower-walls", "gate-min-overlap",
+                                            "min-p-correct", "threads"};
+
+/// What the pair options of `args` ask of loading, segmenting and matching.
+areamatch::MapPairOptions map_pair_options(const Args& args) {
   const bool shared_door = args.text("door-width").has_value();
   if (shared_door && (args.text("source-door-width") || args.text("dest-door-width"))) {
     throw UsageError("give either --door-width or --source-door-width/--dest-door-width, not both");
@@ -594,11 +586,36 @@ int run_match(const std::vector<std::string>& tokens) {
   options.min_score = args.number("min-score", false, true);
   options.min_agreement = args.number("min-agreement", false, true);
   options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
+  options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
   options.min_p_correct = args.number("min-p-correct", false, true);
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
   options.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
+  return options;
+}
+
+const std::string kMatchHelp =
+    std::string("usage: areamatch match SOURCE DEST [options]\n"
+                "Finds the transform that lays map SOURCE onto map DEST (both ROS YAML, PNG or PGM).\n"
+                "Exit status: 0 matched, 1 no acceptable match (with the reason), 2 bad input or usage.\n"
+                "Options:\n") +
+    kPairOptionsHelp +
+    "  --json                  print exactly one JSON object on stdout\n"
+    "  --png OUT.png           picture: SOURCE with matched areas tinted | DEST with SOURCE's walls over it\n"
+    "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n"
+    "  --labels OUT.png        16-bit PNG the size of SOURCE: each pixel of a SOURCE area holds the id + 1 of\n"
+    "                          the DEST area it corresponds to (0: none), to carry room labels over;\n"
+    "                          written only when matched. The JSON lists the pairs with their local transforms\n";
+
+int run_match(const std::vector<std::string>& tokens) {
+  const Args args(tokens, merged(kPairFlags, {"json"}), merged(kPairOptions, {"png", "svg", "labels"}));
+  if (args.flag("help")) {
+    std::cout << kMatchHelp;
+    return 0;
+  }
+  args.expect_positional(2, "SOURCE DEST");
+  const areamatch::MapPairOptions options = map_pair_options(args);
 
   note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
   note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
@@ -644,6 +661,129 @@ int run_match(const std::vector<std::string>& tokens) {
   return 0;
 }
 
+// ---------------------------------------------------------------------------------------- warp
+
+const std::string kWarpHelp =
+    std::string("usage: areamatch warp SOURCE DEST [--points IN.csv] [options]\n"
+                "Matches SOURCE onto DEST, then bends SOURCE onto DEST with a smooth warp (docs/warp.md) and\n"
+                "carries points across: each line 'col,row' of IN.csv (SOURCE pixels; '#' comments and blank\n"
+                "lines are copied) becomes the DEST pixel the warp takes it to.\n"
+                "Exit status: 0 warped, 1 no acceptable match (with the reason), 2 bad input or usage.\n"
+                "Options:\n"
+                "  --points IN.csv          SOURCE pixel coordinates to carry over, one 'col,row' a line\n"
+                "  --out OUT.csv            write the carried points there (default: standard output)\n"
+                "  --grid OUT.yaml          SOURCE resampled into DEST's frame through the warp (PGM + YAML)\n"
+                "  --json                   print exactly one JSON object: the match, the warp's figures and the\n"
+                "                           points (unless --out)\n"
+                "  --control-spacing M      control grid spacing of the warp, metres (default 1.0)\n"
+                "  --bend-length M          shortest bend the warp follows, metres (default 8.0)\n") +
+    kPairOptionsHelp;
+
+/// One line of a points file: a pixel, or a line to copy (comment, blank).
+struct PointLine {
+  std::string text;
+  std::optional<Eigen::Vector2d> pixel;
+};
+
+std::vector<PointLine> read_point_lines(const std::string& path, const areamatch::OccupancyGrid& source) {
+  std::ifstream in(path);
+  if (!in) throw areamatch::io_error("cannot read points file " + path);
+  std::vector<PointLine> lines;
+  std::string line;
+  for (std::size_t number = 1; std::getline(in, line); ++number) {
+    if (!line.empty() && line.back() == '\r') line.pop_back();
+    PointLine out{line, std::nullopt};
+    const auto first = line.find_first_not_of(" \t");
+    if (first != std::string::npos && line[first] != '#') {
+      std::string fields = line;
+      std::replace(fields.begin(), fields.end(), ',', ' ');
+      std::istringstream parse(fields);
+      double col = 0.0, row = 0.0;
+      std::string extra;
+      if (!(parse >> col >> row) || (parse >> extra) || !std::isfinite(col) || !std::isfinite(row)) {
+        throw areamatch::format_error(path + ":" + std::to_string(number) + ": expected 'col,row' (two numbers), got '" +
+                                      line + "'");
+      }
+      if (col < -0.5 || row < -0.5 || col > source.width() - 0.5 || row > source.height() - 0.5) {
+        throw areamatch::parameter_error(path + ":" + std::to_string(number) + ": pixel (" + format_double(col) + ", " +
+                                         format_double(row) + ") is outside SOURCE (" + std::to_string(source.width()) +
+                                         " x " + std::to_string(source.height()) + " pixels)");
+      }
+      out.pixel = Eigen::Vector2d(col, row);
+    }
+    lines.push_back(std::move(out));
+  }
+  return lines;
+}
+
+int run_warp(const std::vector<std::string>& tokens) {
+  const Args args(tokens, merged(kPairFlags, {"json"}),
+                  merged(kPairOptions, {"points", "out", "grid", "control-spacing", "bend-length"}));
+  if (args.flag("help")) {
+    std::cout << kWarpHelp;
+    return 0;
+  }
+  args.expect_positional(2, "SOURCE DEST");
+  const areamatch::MapPairOptions options = map_pair_options(args);
+  areamatch::WarpParams warp_params;
+  if (const auto v = args.number("control-spacing", true)) warp_params.control_spacing_m = *v;
+  if (const auto v = args.number("bend-length", true)) warp_params.bend_length_m = *v;
+  warp_params.validate();
+  if (args.text("out") && !args.text("points")) throw UsageError("--out needs --points");
+
+  note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
+  note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
+  const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
+  const auto& [source, dest, source_graph, dest_graph, result] = run;
+  std::vector<PointLine> lines;
+  if (const auto points = args.text("points")) lines = read_point_lines(*points, source);
+  if (!result.ok) {
+    if (args.flag("json")) std::cout << "{\"match\": " << areamatch::match_result_json(result) << "}\n";
+    std::cerr << "areamatch warp: no acceptable match, nothing warped: " << result.reason << "\n";
+    return 1;
+  }
+  const auto warp_start = std::chrono::steady_clock::now();
+  const areamatch::WarpResult warp = areamatch::fit_warp(source, dest, result.T_dest_source, warp_params);
+  const double warp_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - warp_start).count();
+
+  const Eigen::Affine2d source_world = source.world_from_pixel(), dest_pixel = dest.pixel_from_world();
+  std::ostringstream csv;
+  std::string json_points;
+  for (const PointLine& line : lines) {
+    if (!line.pixel) {
+      csv << line.text << "\n";
+      continue;
+    }
+    const Eigen::Vector2d q = dest_pixel * warp.field.apply(source_world * *line.pixel);
+    csv << format_fixed(q.x(), 3) << "," << format_fixed(q.y(), 3) << "\n";
+    json_points += std::string(json_points.empty() ? "" : ", ") + "[" + format_fixed(q.x(), 3) + ", " + format_fixed(q.y(), 3) + "]";
+  }
+  if (const auto out = args.text("out")) areamatch::write_text_file(*out, csv.str());
+  if (const auto grid = args.text("grid")) {
+    areamatch::save_map(areamatch::resample_through(source, warp.field, areamatch::GridInfo::of(dest)),
+                        std::filesystem::path(*grid).replace_extension(".pgm").string());
+  }
+  auto number = [](double v, int digits) { return std::isfinite(v) ? format_fixed(v, digits) : std::string("null"); };
+  if (args.flag("json")) {
+    std::cout << "{\"match\": " << areamatch::match_result_json(result) << ", \"warp\": {\"control_spacing_m\": "
+              << format_double(warp_params.control_spacing_m) << ", \"bend_length_m\": " << format_double(warp_params.bend_length_m)
+              << ", \"source_wall_points\": " << warp.source_wall_points << ", \"paired_points\": " << warp.paired_points
+              << ", \"rigid_median_m\": " << number(warp.rigid_median_m, 4) << ", \"rigid_p95_m\": " << number(warp.rigid_p95_m, 4)
+              << ", \"warped_median_m\": " << number(warp.warped_median_m, 4)
+              << ", \"warped_p95_m\": " << number(warp.warped_p95_m, 4)
+              << ", \"median_displacement_m\": " << number(warp.median_displacement_m, 4)
+              << ", \"max_displacement_m\": " << number(warp.max_displacement_m, 4) << ", \"warp_s\": " << number(warp_s, 4)
+              << "}" << (args.text("points") && !args.text("out") ? ", \"points\": [" + json_points + "]" : "") << "}\n";
+  } else {
+    if (args.text("points") && !args.text("out")) std::cout << csv.str();
+    std::cerr << "areamatch warp: walls " << number(warp.rigid_median_m, 3) << " m off (median) under the rigid answer, "
+              << number(warp.warped_median_m, 3) << " m under the warp (95th percentile " << number(warp.rigid_p95_m, 3)
+              << " -> " << number(warp.warped_p95_m, 3) << " m); displacement median " << number(warp.median_displacement_m, 3)
+              << " m, max " << number(warp.max_displacement_m, 3) << " m; " << format_fixed(1000.0 * warp_s, 1) << " ms\n";
+  }
+  return 0;
+}
+
 // --------------------------------------------------------------------------------------- merge
 
 const char* kMergeHelp =
@@ -673,13 +813,14 @@ const char* kMergeHelp =
     "  --min-agreement A    accept a match when the maps agree at least A (default 0.835) ...\n"
     "  --gate-max-lower-walls W  ... and the lower of the two wall agreements is at most W (default 0.7;\n"
     "                       above 1: whatever the walls)\n"
+    "  --gate-min-overlap M2  ... and the maps share at least M2 m² of free space (default 100; 0: any)\n"
     "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
     "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
 
 int run_merge(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "help"},
                   {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
-                   "gate-max-lower-walls", "min-p-correct", "threads"});
+                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads"});
   if (args.flag("help")) {
     std::cout << kMergeHelp;
     return 0;
@@ -717,6 +858,7 @@ int run_merge(const std::vector<std::string>& tokens) {
   match_options.allow_reflection = args.flag("allow-reflection");
   match_options.min_agreement = args.number("min-agreement", false, true);
   match_options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
+  match_options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
   match_options.min_p_correct = args.number("min-p-correct", false, true);
   areamatch::Matcher<> matcher;
   matcher.segmenter = areamatch::detail::segmenter_with_door(matcher.segmenter, args.number("door-width", true));
@@ -799,6 +941,7 @@ const char* kEvalHelp =
     "  --min-agreement A  reject when the maps agree less than A under the best transform (default 0.835)\n"
     "  --gate-max-lower-walls W  at or above A, accept on the agreement alone only where the lower wall\n"
     "                     agreement is at most W (default 0.7; above 1: always)\n"
+    "  --gate-min-overlap M2  ... and the maps share at least M2 m² of free space (default 100; 0: any)\n"
     "  --estimate-scale   estimate each source's scale (its resolution may be off by 0.5-2x); the summary\n"
     "                     gives the scale errors against the ground truth\n"
     "  --source-resolution R  take every source map as R m/pixel (a pair's source_resolution still wins)\n"
@@ -832,7 +975,7 @@ std::string picture_name(std::size_t index, const std::string& pair_name) {
 
 int run_eval(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "estimate-scale", "help"},
-                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "gate-max-lower-walls", "min-p-correct",
+                  {"out", "repeat", "only", "k", "min-score", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "min-p-correct",
                    "picture-scale", "source-resolution"});
   if (args.flag("help")) {
     std::cout << kEvalHelp;
@@ -847,6 +990,7 @@ int run_eval(const std::vector<std::string>& tokens) {
   options.matching.min_score = args.number("min-score", false, true);
   options.matching.min_agreement = args.number("min-agreement", false, true);
   options.matching.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
+  options.matching.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
   options.matching.min_p_correct = args.number("min-p-correct", false, true);
   options.matching.estimate_scale = args.flag("estimate-scale");
   options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);
@@ -939,6 +1083,8 @@ const char* kCalibrateHelp =
     "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.85)\n"
     "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
     "  --gate-max-lower-walls W  ... when the lower wall agreement is <= W (default 0.7; above 1: always)\n"
+    "  --gate-min-overlap M2  ... and the shared free space is >= M2 m² (default 100; 0: any; kept, not\n"
+    "                     chosen, by --choose-rule)\n"
     "  --svg OUT.svg      the reliability diagram of the real buildings' rows (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
     "                     the in-sample p_correct and whether the rule accepts it (cross-validated):\n"
@@ -953,7 +1099,7 @@ const char* kCalibrateHelp =
     "                     (default), or real buildings' alone; judged on real buildings either way\n";
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "svg", "predictions", "max-false-accept", "choose-on"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "svg", "predictions", "max-false-accept", "choose-on"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -966,6 +1112,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   const double gate = args.number("min-agreement", false, true).value_or(areamatch::MatcherParams{}.min_agreement);
   const double gate_walls =
       args.number("gate-max-lower-walls", false, true).value_or(areamatch::MatcherParams{}.gate_max_lower_walls);
+  const double gate_overlap =
+      args.number("gate-min-overlap", false, true).value_or(areamatch::MatcherParams{}.gate_min_overlap_m2);
   std::vector<CalibrationRow> rows;
   areamatch_cli::MapRoles roles;
   for (const auto& path : args.positional()) {
@@ -982,7 +1130,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::vector<double> in_sample;
   for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
 
-  const Rule rule{base.accept_p_correct, gate, gate_walls}, model_half{0.5, 2.0}, gate_alone{2.0, gate, gate_walls};
+  const Rule rule{base.accept_p_correct, gate, gate_walls, gate_overlap}, model_half{0.5, 2.0},
+      gate_alone{2.0, gate, gate_walls, gate_overlap};
   std::vector<DecisionCounts> per_building(buildings.size());
   DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
   std::vector<signed char> cv_accepted(rows.size());
@@ -1070,11 +1219,11 @@ int run_calibrate(const std::vector<std::string>& tokens) {
       judged_rows.push_back(i);
       judged_predicted.push_back(predicted[i]);
     }
-    const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept);
+    const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept, gate_overlap);
     std::vector<Rule> chosen;
     std::vector<signed char> accepted;
     try {
-      accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, chosen);
+      accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, gate_overlap, chosen);
     } catch (const areamatch::parameter_error& e) {
       throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
                        e.what() + "); nested cross-validation needs more buildings with right answers");
@@ -1083,16 +1232,19 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     for (std::size_t i = 0; i < rows.size(); ++i) {
       if (accepted[i] >= 0) nested_total.add(rows[i].sample.correct, rows[i].different_buildings, accepted[i] > 0);
     }
-    std::map<std::array<double, 3>, int> folds;
-    for (const Rule& fold_rule : chosen) ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.accept_p}];
+    std::map<std::array<double, 4>, int> folds;
+    for (const Rule& fold_rule : chosen) {
+      ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.min_overlap_m2, fold_rule.accept_p}];
+    }
     std::cout << "\nrule chosen on all rows (at most " << format_double(max_false_accept)
               << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
               << format_double(shipped.min_agreement) << " with lower wall agreement <= "
-              << format_double(shipped.max_lower_walls) << ", or p_correct >= " << format_double(shipped.accept_p)
+              << format_double(shipped.max_lower_walls) << " on at least " << format_fixed(shipped.min_overlap_m2, 0)
+              << " m2 shared, or p_correct >= " << format_double(shipped.accept_p)
               << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
     for (const auto& [thresholds, n] : folds) {
-      std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1]) << ", p "
-                << format_double(thresholds[2]) << "] x" << n;
+      std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1])
+                << ", overlap " << format_fixed(thresholds[2], 0) << ", p " << format_double(thresholds[3]) << "] x" << n;
     }
     std::cout << "\n\n"
               << areamatch_cli::judged_report(rows, accepted, buildings, judging, roles,
@@ -1111,6 +1263,7 @@ const char* kMainHelp =
     "  info MAP          size, resolution, origin and free/occupied/unknown fractions of a map\n"
     "  segment MAP       split a map into areas and passages (its Area Graph), with pictures\n"
     "  match SOURCE DEST find the transform between two maps of one building\n"
+    "  warp SOURCE DEST  bend one map onto another beyond the rigid transform, and carry points across\n"
     "  merge MAP MAP...  place several maps of one building in one frame and fuse them into one map\n"
     "  eval MANIFEST     match every pair of a manifest and score it against its ground truth\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
@@ -1128,7 +1281,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
+      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"warp", run_warp}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -15,3 +15,4 @@
 #include "synthetic.hpp"
 #include "transform.hpp"
 #include "version.hpp"
+#include "warp.hpp"

@@ -103,6 +103,9 @@ struct RobotMapParams {
   bool mirror = false;                     ///< the robot map is a mirror image of the layout
   double wall_noise_m = 0.0;               ///< std dev of per-cell jitter of the sampled position
   double wall_bend_m = 0.0;                ///< amplitude of a smooth distortion (SLAM drift)
+  /// wavelength of that distortion (0: half the building's longer side, at least 10 m); longer
+  /// is gentler (a building-wide drift rather than a wavy map)
+  double bend_wavelength_m = 0.0;
   int max_clutter_per_room = 0;            ///< furniture blobs per explored room: 0..this
   double explored_fraction = 1.0;          ///< share of rooms the robot entered (corridors always)
   double speckle_per_m2 = 0.0;             ///< isolated occupied cells per m² of free space
@@ -148,13 +151,36 @@ struct RobotMapParams {
   void validate() const;
 };
 
+/// The smooth distortion of a generated robot map (`RobotMapParams::wall_bend_m`): two long sine
+/// waves per axis, in the layout's frame.
+struct BendField {
+  double amplitude_m = 0.0;
+  double wavelength_m = 10.0;
+  Eigen::Vector4d phase = Eigen::Vector4d::Zero();
+  /// How far the robot map shows layout point p away from where the rigid transform puts it.
+  Eigen::Vector2d operator()(const Eigen::Vector2d& p) const {
+    if (amplitude_m == 0.0) return Eigen::Vector2d::Zero();
+    const double k = 2.0 * pi / wavelength_m;
+    return amplitude_m * Eigen::Vector2d(std::sin(k * p.y() + phase[0]) * std::cos(0.5 * k * p.x() + phase[1]),
+                                         std::sin(k * p.x() + phase[2]) * std::cos(0.5 * k * p.y() + phase[3]));
+  }
+};
+
 /// A robot map of a building with the exact ground truth.
 struct RobotMap {
   OccupancyGrid grid;
-  Similarity2 T_dest_source;          ///< robot-map world → layout world (source → destination)
+  /// robot-map world → layout world (source → destination), rigid; the exact correspondence of a
+  /// bent map is `true_dest` (wall jitter aside)
+  Similarity2 T_dest_source;
   PixelTransform pixel_transform;     ///< robot-map pixel → layout pixel
   std::vector<int> explored_areas;    ///< ids of the areas the robot entered, ascending
   std::vector<Polygon2> clutter;      ///< furniture, layout world frame
+  BendField bend;                     ///< the smooth distortion (none unless `wall_bend_m`)
+  /// The layout point a robot-map point shows: the rigid transform, then the bend.
+  Eigen::Vector2d true_dest(const Eigen::Vector2d& source_world) const {
+    const Eigen::Vector2d p = T_dest_source * source_world;
+    return p + bend(p);
+  }
 };
 
 // ------------------------------------------------------------------------------------------------
@@ -199,6 +225,7 @@ inline void RobotMapParams::validate() const {
   auto non_negative = [](double v, const char* name) { detail::require_non_negative(v, std::string("RobotMapParams::") + name); };
   non_negative(wall_noise_m, "wall_noise_m");
   non_negative(wall_bend_m, "wall_bend_m");
+  non_negative(bend_wavelength_m, "bend_wavelength_m");
   non_negative(speckle_per_m2, "speckle_per_m2");
   non_negative(margin_m, "margin_m");
   non_negative(seen_wall_m, "seen_wall_m");
@@ -620,18 +647,15 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
   robot.pixel_transform = to_pixel_transform(robot.T_dest_source, robot.grid, layout);
 
   // A smooth, seeded distortion: two long sine waves per axis.
-  const double wavelength = std::max(10.0, 0.5 * std::max(bp.width_m, bp.height_m));
+  const double wavelength =
+      params.bend_wavelength_m > 0.0 ? params.bend_wavelength_m : std::max(10.0, 0.5 * std::max(bp.width_m, bp.height_m));
   // Phases drawn from [0, 6.3): a full turn and a little more, which is harmless for a sine (the
   // value is kept so that the same seed draws the same maps as before).
   constexpr double phase_range = 6.3;
   const Eigen::Vector4d phase(random.uniform(0, phase_range), random.uniform(0, phase_range), random.uniform(0, phase_range),
                               random.uniform(0, phase_range));
-  auto bend = [&](const Eigen::Vector2d& p) -> Eigen::Vector2d {
-    if (params.wall_bend_m == 0.0) return Eigen::Vector2d::Zero();
-    const double k = 2.0 * pi / wavelength;
-    return params.wall_bend_m * Eigen::Vector2d(std::sin(k * p.y() + phase[0]) * std::cos(0.5 * k * p.x() + phase[1]),
-                                                std::sin(k * p.x() + phase[2]) * std::cos(0.5 * k * p.y() + phase[3]));
-  };
+  robot.bend = BendField{params.wall_bend_m, wavelength, phase};
+  const BendField& bend = robot.bend;
 
   std::vector<Box2> clutter_boxes;
   for (const auto& c : robot.clutter) {

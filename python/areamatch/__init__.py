@@ -50,7 +50,7 @@ MergeResult.timings = _from_dict("timings", "Seconds per step (dict).")
 
 
 def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None,
-          gate_max_lower_walls=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0,
+          gate_max_lower_walls=None, gate_min_overlap_m2=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0,
           until_connected=False, same_side=True, threads=1, names=None, build_merged_map=True):
     """Places several maps of one building in the frame of maps[reference] and fuses them.
 
@@ -65,7 +65,8 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
     if not all(isinstance(m, Map) for m in maps):
         raise TypeError("merge: maps must be areamatch.Map objects (for prepared maps call Matcher.merge)")
     matcher = Matcher(door_width=door_width, allow_reflection=allow_reflection, min_agreement=min_agreement,
-                      gate_max_lower_walls=gate_max_lower_walls, min_p_correct=min_p_correct)
+                      gate_max_lower_walls=gate_max_lower_walls, gate_min_overlap_m2=gate_min_overlap_m2,
+                      min_p_correct=min_p_correct)
     maps = matcher.prepare_all(maps, threads=threads)
     return matcher.merge(maps, reference=reference, resolution=resolution, wall_share=wall_share,
                          max_residual=max_residual, until_connected=until_connected, same_side=same_side,

@@ -162,7 +162,8 @@ am::MapPairOptions pair_options(std::optional<double> door_width, std::optional<
                                 std::optional<double> dest_door_width, bool allow_reflection, bool estimate_scale,
                                 std::optional<std::size_t> k, std::optional<double> min_score,
                                 std::optional<double> min_agreement, std::optional<double> gate_max_lower_walls,
-                                std::optional<double> min_p_correct, bool paper, unsigned threads) {
+                                std::optional<double> gate_min_overlap_m2, std::optional<double> min_p_correct, bool paper,
+                                unsigned threads) {
   if (door_width && (source_door_width || dest_door_width)) {
     throw am::parameter_error("give either door_width or source_door_width/dest_door_width, not both");
   }
@@ -180,6 +181,7 @@ am::MapPairOptions pair_options(std::optional<double> door_width, std::optional<
   o.min_score = min_score;
   o.min_agreement = min_agreement;
   o.gate_max_lower_walls = gate_max_lower_walls;
+  o.gate_min_overlap_m2 = gate_min_overlap_m2;
   o.min_p_correct = min_p_correct;
   o.paper = paper;
   o.threads = threads;
@@ -481,16 +483,18 @@ PYBIND11_MODULE(_core, m) {
       [](const am::OccupancyGrid& source, const am::OccupancyGrid& dest, bool allow_reflection, bool estimate_scale,
          std::optional<double> door_width, std::optional<double> source_door_width, std::optional<double> dest_door_width,
          std::optional<std::size_t> k, std::optional<double> min_score, std::optional<double> min_agreement,
-         std::optional<double> gate_max_lower_walls, std::optional<double> min_p_correct, bool paper, unsigned threads) {
+         std::optional<double> gate_max_lower_walls, std::optional<double> gate_min_overlap_m2,
+         std::optional<double> min_p_correct, bool paper, unsigned threads) {
         const auto options = pair_options(door_width, source_door_width, dest_door_width, allow_reflection, estimate_scale, k,
-                                           min_score, min_agreement, gate_max_lower_walls, min_p_correct, paper, threads);
+                                           min_score, min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct,
+                                           paper, threads);
         return MatchRun{am::match_grids(source, dest, options), std::nullopt};
       },
       py::arg("source"), py::arg("dest"), py::kw_only(), py::arg("allow_reflection") = false, py::arg("estimate_scale") = false,
       py::arg("door_width") = py::none(), py::arg("source_door_width") = py::none(), py::arg("dest_door_width") = py::none(),
       py::arg("k") = py::none(), py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
-      py::arg("gate_max_lower_walls") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("paper") = false,
-      py::arg("threads") = 1, release_gil(),
+      py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
+      py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = 1, release_gil(),
       "Segments both maps and matches source onto dest, as `areamatch match` (same options, same result).");
 
   // ------------------------------------------------------------------ Prepared maps, merging
@@ -501,10 +505,11 @@ PYBIND11_MODULE(_core, m) {
   py::class_<PyMatcher>(m, "Matcher", "The default matcher with options, for prepared maps and merging.")
       .def(py::init([](std::optional<double> door_width, bool allow_reflection, std::optional<std::size_t> k,
                        std::optional<double> min_score, std::optional<double> min_agreement,
-                       std::optional<double> gate_max_lower_walls, std::optional<double> min_p_correct, unsigned threads) {
+                       std::optional<double> gate_max_lower_walls, std::optional<double> gate_min_overlap_m2,
+                       std::optional<double> min_p_correct, unsigned threads) {
              PyMatcher p;
              p.options = pair_options(door_width, std::nullopt, std::nullopt, allow_reflection, false, k, min_score,
-                                      min_agreement, gate_max_lower_walls, min_p_correct, false, threads);
+                                      min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct, false, threads);
              am::detail::apply_match_options(p.matcher.params, p.options);
              p.matcher.segmenter = am::detail::segmenter_with_door(am::VoronoiSegmenter{}, door_width);
              p.matcher.params.validate();
@@ -512,7 +517,8 @@ PYBIND11_MODULE(_core, m) {
            }),
            py::kw_only(), py::arg("door_width") = py::none(), py::arg("allow_reflection") = false, py::arg("k") = py::none(),
            py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
-           py::arg("gate_max_lower_walls") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("threads") = 1)
+           py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
+           py::arg("min_p_correct") = py::none(), py::arg("threads") = 1)
       .def("prepare", [](const PyMatcher& p, const am::OccupancyGrid& grid) { return p.matcher.prepare(grid); }, py::arg("map"),
            release_gil(), "Segments the map and builds its match data once.")
       .def(

@@ -3,7 +3,8 @@
 /// The rule that sets `MatchResult::ok` (docs/matching.md, "the decision"): an answer is refused
 /// when its whole-map score is below `min_score`, when the maps agree too little and the
 /// calibrated model is not sure (`min_agreement`, `decision.accept_p_correct`; the agreement
-/// alone does not do where the walls agree both ways, `gate_max_lower_walls`), when the model
+/// alone does not do where the walls agree both ways, `gate_max_lower_walls`, or on little shared
+/// free space, `gate_min_overlap_m2`), when the model
 /// finds it too likely wrong (`decision.min_p_correct`), or when a rival is too close
 /// (`min_confidence`).
 
@@ -17,10 +18,12 @@
 namespace areamatch::detail {
 
 /// Whether the agreement gate lets an answer through whatever the model says: the maps agree
-/// (`min_agreement`) and one map's walls are largely unexplained by the other's
-/// (`gate_max_lower_walls`).
+/// (`min_agreement`), one map's walls are largely unexplained by the other's
+/// (`gate_max_lower_walls`), and they share enough free space for that to mean something
+/// (`gate_min_overlap_m2`).
 inline bool passes_agreement_gate(const MatchEvidence& evidence, const MatcherParams& params) {
-  return evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls;
+  return evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls &&
+         evidence.overlap_m2 >= params.gate_min_overlap_m2;
 }
 
 /// Why the answer in `result` (margins, evidence and p_correct measured) is refused; empty when
@@ -40,6 +43,15 @@ inline std::string refusal(const MatchResult& result, const MatcherParams& param
            format_fixed(evidence.forward_wall_agreement, 3) + ", free-space IoU " + format_fixed(evidence.free_iou, 3) +
            "; p_correct " + format_fixed(result.p_correct, 3) + " < accept_p_correct " +
            format_double(params.decision.accept_p_correct) + ")";
+  }
+  // Agreement enough, but on too little shared free space: the gate is closed, the model decides.
+  if (evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls &&
+      !passes_agreement_gate(evidence, params) && !model_sure) {
+    return "the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
+           format_double(params.min_agreement) + ") on too little shared free space to go on that alone (" +
+           format_fixed(evidence.overlap_m2, 1) + " m² < gate_min_overlap_m2 " + format_fixed(params.gate_min_overlap_m2, 0) +
+           "), where the calibrated model judges alone, and it is not sure enough: p_correct " +
+           format_fixed(result.p_correct, 3) + " < accept_p_correct " + format_double(params.decision.accept_p_correct);
   }
   // Agreement enough, but the walls agree both ways too: the gate is closed, the model decides.
   if (evidence.agreement >= params.min_agreement && !passes_agreement_gate(evidence, params) && !model_sure) {

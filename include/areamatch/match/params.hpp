@@ -102,6 +102,14 @@ struct MatcherParams {
   /// `areamatch calibrate --choose-rule` chooses from data, in all 141 folds of its nested
   /// cross-validation (docs/evaluation.md). Above 1: the gate applies whatever the walls.
   double gate_max_lower_walls = 0.7;
+  /// The agreement gate also needs at least this much shared free space (`MatchEvidence::
+  /// overlap_m2`, destination m²): agreeing walls prove little on one room. A hand-held scan of a
+  /// single office (F5_02, 43 m² shared) agreed at 0.874 with an apartment's scan, lower walls
+  /// 0.31; every right answer the gate lets through on the real maps shares 231 m² or more.
+  /// 100 m² (a few rooms) is what `areamatch calibrate --choose-rule` chooses from its grid
+  /// (0, 25, 50, 100) on all rows and in every fold of the nested cross-validation
+  /// (docs/evaluation.md). 0: the gate whatever the overlap.
+  double gate_min_overlap_m2 = 100.0;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
   /// the two wall agreements). A map confirmed on little of the other's free space is less certain.
   double agreement_iou_weight = 0.2;
@@ -133,6 +141,7 @@ struct MatcherParams {
     p.min_score = 0.0;          // the paper has no rejection rule:
     p.min_agreement = 0.0;
     p.gate_max_lower_walls = 2.0;
+    p.gate_min_overlap_m2 = 0.0;
     p.decision.min_p_correct = 0.0;
     p.decision.accept_p_correct = 1.0;
     p.min_confidence = -1.0;    // it always answers
@@ -165,6 +174,7 @@ struct MatcherParams {
     detail::require_non_negative(min_score, "MatcherParams::min_score");
     detail::require_non_negative(min_agreement, "MatcherParams::min_agreement");
     detail::require_non_negative(gate_max_lower_walls, "MatcherParams::gate_max_lower_walls");
+    detail::require_non_negative(gate_min_overlap_m2, "MatcherParams::gate_min_overlap_m2");
     decision.validate();
     if (!(agreement_iou_weight >= 0.0 && agreement_iou_weight <= 1.0)) {
       throw parameter_error("MatcherParams::agreement_iou_weight must be in [0, 1]");

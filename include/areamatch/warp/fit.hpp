@@ -1,0 +1,315 @@
+#pragma once
+/// \file warp/fit.hpp
+/// Fits a non-rigid warp (warp/field.hpp) that lays a source map's walls onto a destination's,
+/// starting from a rigid answer (a `MatchResult::T_dest_source`).
+///
+/// A bent SLAM map or hand-held scan is not one rigid piece: after the best rigid fit, rooms far
+/// from the map's middle are 0.3–1 m off. The warp moves every part of the source a little, as
+/// a thin plate would bend: it minimises
+///
+///   Σ over source wall points  w · ((n · r)² + along_wall_weight · |r|²)      (walls onto walls)
+///   + κ · ∫ |∂²d/∂x²|² + 2 |∂²d/∂x∂y|² + |∂²d/∂y²|² dA                        (smooth bending)
+///   + rest_weight · ∫ |d|² dA                                                 (rest where nothing is seen)
+///
+/// over the control grid's displacements d, where r is the warped source point less the
+/// destination wall point paired with it, n that wall's normal (point-to-line: walls slide along
+/// each other), w the wall length per point, κ from `WarpParams::bend_length_m`. The bending
+/// term does not resist a rigid or affine motion, only bends. For fixed pairs the energy is
+/// quadratic: a sparse linear system (Eigen's SimplicialLDLT). Pairs are found again after each
+/// solve (a wall point with the nearest destination wall that faces the same way, within a gate
+/// that shrinks stage by stage, the farthest share dropped as furniture and streaks), as ICP does.
+/// Deterministic: one thread, fixed summation order.
+
+#include "../detail/format.hpp"
+#include "../error.hpp"
+#include "../grid.hpp"
+#include "../match/raster.hpp"
+#include "../match/refine.hpp"
+#include "field.hpp"
+#include "params.hpp"
+
+#include <Eigen/Core>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseCore>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <vector>
+
+namespace areamatch {
+
+/// A fitted warp and how well it lays the walls, before and after.
+struct WarpResult {
+  WarpField field;
+  std::size_t source_wall_points = 0;  ///< wall points of the source that could be paired
+  std::size_t paired_points = 0;       ///< pairs of the last solve (within the last gate, kept)
+  /// Over the source wall points whose destination wall (facing the same way) lies within
+  /// `WarpParams::report_within_m` under the rigid transform: the median and 95th percentile of
+  /// that distance under the rigid transform and under the warp, metres.
+  double rigid_median_m = std::numeric_limits<double>::quiet_NaN();
+  double rigid_p95_m = std::numeric_limits<double>::quiet_NaN();
+  double warped_median_m = std::numeric_limits<double>::quiet_NaN();
+  double warped_p95_m = std::numeric_limits<double>::quiet_NaN();
+  /// The displacement at the source's wall points (how far the warp moves them beyond the rigid
+  /// transform): median and maximum, metres.
+  double median_displacement_m = 0.0;
+  double max_displacement_m = 0.0;
+};
+
+namespace detail {
+
+/// A map's walls as edge cells: free cells with an occupied 4-neighbour (free space ending at
+/// unknown cells is a frontier, not a wall), in scan order.
+inline std::vector<std::size_t> wall_edge_cells(const OccupancyGrid& grid) {
+  const GridInfo g = GridInfo::of(grid);
+  const auto& cells = grid.cells();
+  std::vector<std::size_t> edge =
+      edge_cells(g, PixelBounds{0, 0, grid.width(), grid.height()}, [&](std::size_t i) { return cells[i] == CellState::free; });
+  std::vector<std::size_t> walls;
+  walls.reserve(edge.size());
+  auto occupied = [&](int x, int y) { return grid.contains(x, y) && grid.at(x, y) == CellState::occupied; };
+  for (const std::size_t i : edge) {
+    const int x = static_cast<int>(i % static_cast<std::size_t>(grid.width()));
+    const int y = static_cast<int>(i / static_cast<std::size_t>(grid.width()));
+    if (occupied(x - 1, y) || occupied(x + 1, y) || occupied(x, y - 1) || occupied(x, y + 1)) walls.push_back(i);
+  }
+  return walls;
+}
+
+/// The destination's walls to land on: a lookup with normals and free sides.
+inline BoundaryLookup wall_lookup(const OccupancyGrid& grid, const WarpParams& params) {
+  const GridInfo g = GridInfo::of(grid);
+  const double reach = *std::max_element(params.gates_m.begin(), params.gates_m.end());
+  BoundaryLookup lookup(boundary_points(g, wall_edge_cells(grid), 0.5 * params.lookup_cell_m), params.lookup_cell_m, reach,
+                        params.normal_radius_m);
+  if (!lookup.empty()) lookup.set_sides(free_sides(grid, lookup.points(), params.free_side_radius_m));
+  return lookup;
+}
+
+/// The bending and rest terms of the energy over `field`'s nodes (2 unknowns a node: x, y).
+inline std::vector<Eigen::Triplet<double>> smoothness_terms(const WarpField& field, const WarpParams& params) {
+  std::vector<Eigen::Triplet<double>> out;
+  const double h = field.spacing(), h2 = h * h;
+  const double bend = params.bending_weight() * h2 / (h2 * h2);  // κ · area per node · (1/h²)²
+  auto add = [&](const std::size_t* nodes, const double* coefficients, int count, double weight) {
+    for (int a = 0; a < count; ++a) {
+      for (int b = 0; b < count; ++b) {
+        const double v = weight * coefficients[a] * coefficients[b];
+        for (int c = 0; c < 2; ++c) {
+          out.emplace_back(static_cast<int>(2 * nodes[a] + c), static_cast<int>(2 * nodes[b] + c), v);
+        }
+      }
+    }
+  };
+  const int nx = field.columns(), ny = field.rows();
+  const double second[3] = {1.0, -2.0, 1.0}, mixed[4] = {1.0, -1.0, -1.0, 1.0}, one[1] = {1.0};
+  for (int j = 0; j < ny; ++j) {
+    for (int i = 0; i < nx; ++i) {
+      const std::size_t self[1] = {field.node(i, j)};
+      add(self, one, 1, params.rest_weight * h2);
+      if (i > 0 && i + 1 < nx) {
+        const std::size_t nodes[3] = {field.node(i - 1, j), field.node(i, j), field.node(i + 1, j)};
+        add(nodes, second, 3, bend);
+      }
+      if (j > 0 && j + 1 < ny) {
+        const std::size_t nodes[3] = {field.node(i, j - 1), field.node(i, j), field.node(i, j + 1)};
+        add(nodes, second, 3, bend);
+      }
+      if (i + 1 < nx && j + 1 < ny) {
+        const std::size_t nodes[4] = {field.node(i, j), field.node(i + 1, j), field.node(i, j + 1), field.node(i + 1, j + 1)};
+        add(nodes, mixed, 4, 2.0 * bend);
+      }
+    }
+  }
+  return out;
+}
+
+/// One source wall point paired with a destination wall point.
+struct WarpPair {
+  double distance2;
+  std::size_t point;
+  const Eigen::Vector2d* to;
+};
+
+/// Pairs each source point (warped by `field`) with the nearest destination wall facing its way
+/// within `gate`; the closest `keep_fraction` of them, in the points' order.
+inline std::vector<WarpPair> warp_pairs(const WarpField& field, const std::vector<Eigen::Vector2d>& points,
+                                        const std::vector<Eigen::Vector2d>& sides, const BoundaryLookup& dest, double gate,
+                                        double keep_fraction) {
+  std::vector<WarpPair> pairs;
+  const Eigen::Matrix2d turn = field.rigid().linear() / field.rigid().scale;  // sides are directions
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d y = field.apply(points[i]);
+    const Eigen::Vector2d* q = dest.nearest_facing(y, turn * sides[i]);
+    if (!q) continue;
+    const double d2 = (*q - y).squaredNorm();
+    if (d2 <= gate * gate) pairs.push_back({d2, i, q});
+  }
+  const std::size_t keep = static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(pairs.size())));
+  if (keep < pairs.size()) {
+    std::nth_element(pairs.begin(), pairs.begin() + static_cast<std::ptrdiff_t>(keep), pairs.end(),
+                     [](const WarpPair& a, const WarpPair& b) {
+                       return a.distance2 < b.distance2 || (a.distance2 == b.distance2 && a.point < b.point);
+                     });
+    pairs.resize(keep);
+    std::sort(pairs.begin(), pairs.end(), [](const WarpPair& a, const WarpPair& b) { return a.point < b.point; });
+  }
+  return pairs;
+}
+
+/// Solves for the displacements that lay `pairs` best under the smoothness terms; writes them
+/// into `field`. Returns false when the system could not be solved (the field is kept).
+inline bool solve_warp(WarpField& field, const std::vector<WarpPair>& pairs, const std::vector<Eigen::Vector2d>& points,
+                       const BoundaryLookup& dest, const std::vector<Eigen::Triplet<double>>& smoothness,
+                       const WarpParams& params) {
+  const int n = static_cast<int>(2 * field.node_count());
+  // The data terms summed per control cell (its four nodes, eight unknowns) before they enter
+  // the sparse matrix: one 8×8 block a cell instead of one a pair.
+  const std::size_t cells = static_cast<std::size_t>(field.columns() - 1) * static_cast<std::size_t>(field.rows() - 1);
+  std::vector<std::array<double, 64>> blocks(cells);
+  std::vector<std::uint8_t> used(cells, 0);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
+  const double w = params.point_spacing_m;
+  for (const WarpPair& pair : pairs) {
+    const Eigen::Vector2d& p = points[pair.point];
+    const WarpField::Stencil s = field.stencil(p);
+    const std::size_t cell = s.nodes[0] - s.nodes[0] / static_cast<std::size_t>(field.columns());  // i + j·(columns − 1)
+    auto& block = blocks[cell];
+    if (!used[cell]) block.fill(0.0);
+    used[cell] = 1;
+    const Eigen::Vector2d r0 = field.rigid() * p - *pair.to;
+    const Eigen::Vector2d& normal = dest.normal_at(pair.to);
+    // Rows of the residuals in the cell's eight unknowns (node k, component c at 2k + c).
+    auto add_row = [&](const Eigen::Vector2d& direction, double residual, double weight) {
+      std::array<double, 8> j{};
+      for (std::size_t k = 0; k < 4; ++k) {
+        j[2 * k] = s.weights[k] * direction.x();
+        j[2 * k + 1] = s.weights[k] * direction.y();
+      }
+      for (std::size_t a = 0; a < 8; ++a) {
+        if (j[a] == 0.0) continue;
+        for (std::size_t c = 0; c < 8; ++c) block[a * 8 + c] += weight * j[a] * j[c];
+        b(static_cast<Eigen::Index>(2 * s.nodes[a / 2] + a % 2)) -= weight * j[a] * residual;
+      }
+    };
+    add_row(normal, normal.dot(r0), w);
+    if (params.along_wall_weight > 0.0) {
+      add_row(Eigen::Vector2d::UnitX(), r0.x(), w * params.along_wall_weight);
+      add_row(Eigen::Vector2d::UnitY(), r0.y(), w * params.along_wall_weight);
+    }
+  }
+  std::vector<Eigen::Triplet<double>> triplets = smoothness;
+  const std::size_t columns = static_cast<std::size_t>(field.columns());
+  for (std::size_t cell = 0; cell < cells; ++cell) {
+    if (!used[cell]) continue;
+    const std::size_t i = cell % (columns - 1), j = cell / (columns - 1);
+    const std::array<std::size_t, 4> nodes = {j * columns + i, j * columns + i + 1, (j + 1) * columns + i,
+                                              (j + 1) * columns + i + 1};
+    for (std::size_t a = 0; a < 8; ++a) {
+      for (std::size_t c = 0; c < 8; ++c) {
+        const double v = blocks[cell][a * 8 + c];
+        if (v != 0.0) {
+          triplets.emplace_back(static_cast<int>(2 * nodes[a / 2] + a % 2), static_cast<int>(2 * nodes[c / 2] + c % 2), v);
+        }
+      }
+    }
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(triplets.begin(), triplets.end());
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
+  if (solver.info() != Eigen::Success) return false;
+  const Eigen::VectorXd x = solver.solve(b);
+  if (solver.info() != Eigen::Success || !x.allFinite()) return false;
+  for (std::size_t k = 0; k < field.node_count(); ++k) {
+    field.node_displacement(k) = Eigen::Vector2d(x(static_cast<Eigen::Index>(2 * k)), x(static_cast<Eigen::Index>(2 * k + 1)));
+  }
+  return true;
+}
+
+/// The median and 95th percentile of `values` (NaN when empty); reorders them.
+inline std::array<double, 2> median_and_p95(std::vector<double>& values) {
+  if (values.empty()) return {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::quiet_NaN()};
+  std::sort(values.begin(), values.end());
+  auto at = [&](double q) { return values[std::min(values.size() - 1, static_cast<std::size_t>(q * static_cast<double>(values.size())))]; };
+  return {at(0.5), at(0.95)};
+}
+
+}  // namespace detail
+
+/// The warp from `source` to `dest` that starts from `T_dest_source` (a match's answer) and bends
+/// the source's walls onto the destination's (file comment). Throws `parameter_error` for bad
+/// parameters or an empty map; a source without walls near the destination's gives the rigid
+/// transform alone (`WarpResult::paired_points` 0).
+inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& dest, const Similarity2& T_dest_source,
+                           const WarpParams& params = {}) {
+  params.validate();
+  if (source.empty() || dest.empty()) throw parameter_error("fit_warp: both maps must have cells");
+  const GridInfo g = GridInfo::of(source);
+  const std::vector<Eigen::Vector2d> points = detail::boundary_points(g, detail::wall_edge_cells(source), params.point_spacing_m);
+  const std::vector<Eigen::Vector2d> sides = detail::free_sides(source, points, params.free_side_radius_m);
+  const BoundaryLookup lookup = detail::wall_lookup(dest, params);
+
+  WarpResult out;
+  out.source_wall_points = points.size();
+  // The control grid over the source's walls (or its whole extent when it has none).
+  Eigen::Vector2d lo = source.cell_center(0, source.height() - 1), hi = source.cell_center(source.width() - 1, 0);
+  if (!points.empty()) {
+    lo = hi = points.front();
+    for (const auto& p : points) {
+      lo = lo.cwiseMin(p);
+      hi = hi.cwiseMax(p);
+    }
+  }
+  lo.array() -= params.margin_m;
+  hi.array() += params.margin_m;
+  const double h = params.control_spacing_m;
+  const int columns = static_cast<int>(std::ceil((hi.x() - lo.x()) / h)) + 1;
+  const int rows = static_cast<int>(std::ceil((hi.y() - lo.y()) / h)) + 1;
+  if (static_cast<double>(columns) * rows > 4.0e6) {
+    throw parameter_error("fit_warp: the control grid would have more than 4 million nodes; raise WarpParams::control_spacing_m (now " +
+                          detail::format_double(h) + " m)");
+  }
+  out.field = WarpField(T_dest_source, lo, h, columns, rows);
+  if (points.empty() || lookup.empty()) return out;
+
+  const auto smoothness = detail::smoothness_terms(out.field, params);
+  constexpr std::size_t min_pairs = 10;
+  for (const double gate : params.gates_m) {
+    for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
+      const auto pairs = detail::warp_pairs(out.field, points, sides, lookup, gate, params.keep_fraction);
+      if (pairs.size() < min_pairs) break;
+      if (!detail::solve_warp(out.field, pairs, points, lookup, smoothness, params)) break;
+      out.paired_points = pairs.size();
+    }
+  }
+
+  // How well the walls lie, before and after, on the points the rigid transform brings near a wall.
+  const double within = params.report_within_m;
+  const Eigen::Matrix2d turn = T_dest_source.linear() / T_dest_source.scale;
+  std::vector<double> rigid, warped, moved;
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d y0 = T_dest_source * points[i];
+    const Eigen::Vector2d* q0 = lookup.nearest_facing(y0, turn * sides[i]);
+    if (!q0 || (*q0 - y0).norm() > within) continue;
+    const Eigen::Vector2d d = out.field.displacement(points[i]);
+    const Eigen::Vector2d* q1 = lookup.nearest_facing(y0 + d, turn * sides[i]);
+    rigid.push_back((*q0 - y0).norm());
+    warped.push_back(q1 ? (*q1 - (y0 + d)).norm() : within);
+    moved.push_back(d.norm());
+  }
+  const auto r = detail::median_and_p95(rigid), wp = detail::median_and_p95(warped);
+  out.rigid_median_m = r[0];
+  out.rigid_p95_m = r[1];
+  out.warped_median_m = wp[0];
+  out.warped_p95_m = wp[1];
+  if (!moved.empty()) {
+    out.max_displacement_m = *std::max_element(moved.begin(), moved.end());
+    out.median_displacement_m = detail::median_and_p95(moved)[0];
+  }
+  return out;
+}
+
+}  // namespace areamatch
