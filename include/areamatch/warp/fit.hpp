@@ -37,10 +37,20 @@
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <limits>
 #include <vector>
 
 namespace areamatch {
+
+/// Where a warp starts (both optional): `displacement` (source world → destination metres) gives
+/// the nodes' first displacements — e.g. each part of a map moved by its own rigid fit, so that
+/// walls farther off than the first gate are paired all the same; `piece` labels the source's
+/// rigid pieces (assess/pieces.hpp), and the warp does not resist bending between two of them.
+struct WarpStart {
+  std::function<Eigen::Vector2d(const Eigen::Vector2d&)> displacement;
+  std::function<int(const Eigen::Vector2d&)> piece;
+};
 
 /// A fitted warp and how well it lays the walls, before and after.
 struct WarpResult {
@@ -90,12 +100,18 @@ inline BoundaryLookup wall_lookup(const OccupancyGrid& grid, const WarpParams& p
   return lookup;
 }
 
-/// The bending and rest terms of the energy over `field`'s nodes (2 unknowns a node: x, y).
-inline std::vector<Eigen::Triplet<double>> smoothness_terms(const WarpField& field, const WarpParams& params) {
+/// The bending and rest terms of the energy over `field`'s nodes (2 unknowns a node: x, y). With
+/// `node_piece` (one label per node), a bending stencil whose nodes carry different labels is left
+/// out: the field bends freely where a map is broken.
+inline std::vector<Eigen::Triplet<double>> smoothness_terms(const WarpField& field, const WarpParams& params,
+                                                            const std::vector<int>& node_piece = {}) {
   std::vector<Eigen::Triplet<double>> out;
   const double h = field.spacing(), h2 = h * h;
   const double bend = params.bending_weight() * h2 / (h2 * h2);  // κ · area per node · (1/h²)²
   auto add = [&](const std::size_t* nodes, const double* coefficients, int count, double weight) {
+    for (int a = 1; a < count && !node_piece.empty(); ++a) {
+      if (node_piece[nodes[a]] != node_piece[nodes[0]]) return;
+    }
     for (int a = 0; a < count; ++a) {
       for (int b = 0; b < count; ++b) {
         const double v = weight * coefficients[a] * coefficients[b];
@@ -161,74 +177,134 @@ inline std::vector<WarpPair> warp_pairs(const WarpField& field, const std::vecto
   return pairs;
 }
 
-/// Solves for the displacements that lay `pairs` best under the smoothness terms; writes them
-/// into `field`. Returns false when the system could not be solved (the field is kept).
-inline bool solve_warp(WarpField& field, const std::vector<WarpPair>& pairs, const std::vector<Eigen::Vector2d>& points,
-                       const BoundaryLookup& dest, const std::vector<Eigen::Triplet<double>>& smoothness,
-                       const WarpParams& params) {
-  const int n = static_cast<int>(2 * field.node_count());
-  // The data terms summed per control cell (its four nodes, eight unknowns) before they enter
-  // the sparse matrix: one 8×8 block a cell instead of one a pair.
-  const std::size_t cells = static_cast<std::size_t>(field.columns() - 1) * static_cast<std::size_t>(field.rows() - 1);
-  std::vector<std::array<double, 64>> blocks(cells);
-  std::vector<std::uint8_t> used(cells, 0);
-  Eigen::VectorXd b = Eigen::VectorXd::Zero(n);
-  const double w = params.point_spacing_m;
-  for (const WarpPair& pair : pairs) {
-    const Eigen::Vector2d& p = points[pair.point];
-    const WarpField::Stencil s = field.stencil(p);
-    const std::size_t cell = s.nodes[0] - s.nodes[0] / static_cast<std::size_t>(field.columns());  // i + j·(columns − 1)
-    auto& block = blocks[cell];
-    if (!used[cell]) block.fill(0.0);
-    used[cell] = 1;
-    const Eigen::Vector2d r0 = field.rigid() * p - *pair.to;
-    const Eigen::Vector2d& normal = dest.normal_at(pair.to);
-    // Rows of the residuals in the cell's eight unknowns (node k, component c at 2k + c).
-    auto add_row = [&](const Eigen::Vector2d& direction, double residual, double weight) {
-      std::array<double, 8> j{};
-      for (std::size_t k = 0; k < 4; ++k) {
-        j[2 * k] = s.weights[k] * direction.x();
-        j[2 * k + 1] = s.weights[k] * direction.y();
-      }
-      for (std::size_t a = 0; a < 8; ++a) {
-        if (j[a] == 0.0) continue;
-        for (std::size_t c = 0; c < 8; ++c) block[a * 8 + c] += weight * j[a] * j[c];
-        b(static_cast<Eigen::Index>(2 * s.nodes[a / 2] + a % 2)) -= weight * j[a] * residual;
-      }
-    };
-    add_row(normal, normal.dot(r0), w);
-    if (params.along_wall_weight > 0.0) {
-      add_row(Eigen::Vector2d::UnitX(), r0.x(), w * params.along_wall_weight);
-      add_row(Eigen::Vector2d::UnitY(), r0.y(), w * params.along_wall_weight);
-    }
+/// The warp's linear system across the solves of one fit: the smoothness part (the same for
+/// every solve) and the last factorization. The first solve of each gate factorizes its system
+/// (sparse LDLT); the solves after it change the pairs only a little, so they are solved by
+/// conjugate gradients preconditioned with that factorization, from the current displacements —
+/// a few triangular solves instead of a factorization each (the factorization is most of a
+/// warp's time). Deterministic: one thread, fixed order.
+class WarpSystem {
+ public:
+  WarpSystem(const WarpField& field, const WarpParams& params, const std::vector<int>& node_piece = {})
+      : unknowns_(static_cast<Eigen::Index>(2 * field.node_count())) {
+    const auto triplets = smoothness_terms(field, params, node_piece);
+    smoothness_.resize(unknowns_, unknowns_);
+    smoothness_.setFromTriplets(triplets.begin(), triplets.end());
   }
-  std::vector<Eigen::Triplet<double>> triplets = smoothness;
-  const std::size_t columns = static_cast<std::size_t>(field.columns());
-  for (std::size_t cell = 0; cell < cells; ++cell) {
-    if (!used[cell]) continue;
-    const std::size_t i = cell % (columns - 1), j = cell / (columns - 1);
-    const std::array<std::size_t, 4> nodes = {j * columns + i, j * columns + i + 1, (j + 1) * columns + i,
-                                              (j + 1) * columns + i + 1};
-    for (std::size_t a = 0; a < 8; ++a) {
-      for (std::size_t c = 0; c < 8; ++c) {
-        const double v = blocks[cell][a * 8 + c];
-        if (v != 0.0) {
-          triplets.emplace_back(static_cast<int>(2 * nodes[a / 2] + a % 2), static_cast<int>(2 * nodes[c / 2] + c % 2), v);
+
+  /// Solves for the displacements that lay `pairs` best under the smoothness terms and writes
+  /// them into `field`; `refactor` factorizes this system first (else the last factorization
+  /// preconditions it). Returns false when it could not be solved (the field is kept).
+  bool solve(WarpField& field, const std::vector<WarpPair>& pairs, const std::vector<Eigen::Vector2d>& points,
+             const BoundaryLookup& dest, const WarpParams& params, bool refactor) {
+    Eigen::VectorXd b;
+    const Eigen::SparseMatrix<double> A = smoothness_ + data_terms(field, pairs, points, dest, params, b);
+    Eigen::VectorXd x(unknowns_);
+    for (std::size_t k = 0; k < field.node_count(); ++k) x.segment<2>(static_cast<Eigen::Index>(2 * k)) = field.node_displacement(k);
+    if (!(factored_ && !refactor && preconditioned_cg(A, b, x))) {
+      factor_.compute(A);
+      factored_ = factor_.info() == Eigen::Success;
+      if (!factored_) return false;
+      x = factor_.solve(b);
+      if (factor_.info() != Eigen::Success) return false;
+    }
+    if (!x.allFinite()) return false;
+    for (std::size_t k = 0; k < field.node_count(); ++k) field.node_displacement(k) = x.segment<2>(static_cast<Eigen::Index>(2 * k));
+    return true;
+  }
+
+ private:
+  /// The pairs' point-to-line (and a little point-to-point) terms, summed per control cell (its
+  /// four nodes, eight unknowns) before they enter the sparse matrix: one 8×8 block a cell
+  /// instead of one a pair. Fills the right-hand side `b`.
+  Eigen::SparseMatrix<double> data_terms(const WarpField& field, const std::vector<WarpPair>& pairs,
+                                         const std::vector<Eigen::Vector2d>& points, const BoundaryLookup& dest,
+                                         const WarpParams& params, Eigen::VectorXd& b) const {
+    const std::size_t columns = static_cast<std::size_t>(field.columns());
+    const std::size_t cells = (columns - 1) * static_cast<std::size_t>(field.rows() - 1);
+    std::vector<std::array<double, 64>> blocks(cells);
+    std::vector<std::uint8_t> used(cells, 0);
+    b = Eigen::VectorXd::Zero(unknowns_);
+    const double w = params.point_spacing_m;
+    for (const WarpPair& pair : pairs) {
+      const Eigen::Vector2d& p = points[pair.point];
+      const WarpField::Stencil s = field.stencil(p);
+      const std::size_t cell = s.nodes[0] - s.nodes[0] / columns;  // i + j·(columns − 1)
+      auto& block = blocks[cell];
+      if (!used[cell]) block.fill(0.0);
+      used[cell] = 1;
+      const Eigen::Vector2d r0 = field.rigid() * p - *pair.to;
+      const Eigen::Vector2d& normal = dest.normal_at(pair.to);
+      // Rows of the residuals in the cell's eight unknowns (node k, component c at 2k + c).
+      auto add_row = [&](const Eigen::Vector2d& direction, double residual, double weight) {
+        std::array<double, 8> j{};
+        for (std::size_t k = 0; k < 4; ++k) {
+          j[2 * k] = s.weights[k] * direction.x();
+          j[2 * k + 1] = s.weights[k] * direction.y();
+        }
+        for (std::size_t a = 0; a < 8; ++a) {
+          if (j[a] == 0.0) continue;
+          for (std::size_t c = 0; c < 8; ++c) block[a * 8 + c] += weight * j[a] * j[c];
+          b(static_cast<Eigen::Index>(2 * s.nodes[a / 2] + a % 2)) -= weight * j[a] * residual;
+        }
+      };
+      add_row(normal, normal.dot(r0), w);
+      if (params.along_wall_weight > 0.0) {
+        add_row(Eigen::Vector2d::UnitX(), r0.x(), w * params.along_wall_weight);
+        add_row(Eigen::Vector2d::UnitY(), r0.y(), w * params.along_wall_weight);
+      }
+    }
+    std::vector<Eigen::Triplet<double>> triplets;
+    triplets.reserve(64 * static_cast<std::size_t>(std::count(used.begin(), used.end(), std::uint8_t{1})));
+    for (std::size_t cell = 0; cell < cells; ++cell) {
+      if (!used[cell]) continue;
+      const std::size_t i = cell % (columns - 1), j = cell / (columns - 1);
+      const std::array<std::size_t, 4> nodes = {j * columns + i, j * columns + i + 1, (j + 1) * columns + i,
+                                                (j + 1) * columns + i + 1};
+      for (std::size_t a = 0; a < 8; ++a) {
+        for (std::size_t c = 0; c < 8; ++c) {
+          const double v = blocks[cell][a * 8 + c];
+          if (v != 0.0) {
+            triplets.emplace_back(static_cast<int>(2 * nodes[a / 2] + a % 2), static_cast<int>(2 * nodes[c / 2] + c % 2), v);
+          }
         }
       }
     }
+    Eigen::SparseMatrix<double> D(unknowns_, unknowns_);
+    D.setFromTriplets(triplets.begin(), triplets.end());
+    return D;
   }
-  Eigen::SparseMatrix<double> A(n, n);
-  A.setFromTriplets(triplets.begin(), triplets.end());
-  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> solver(A);
-  if (solver.info() != Eigen::Success) return false;
-  const Eigen::VectorXd x = solver.solve(b);
-  if (solver.info() != Eigen::Success || !x.allFinite()) return false;
-  for (std::size_t k = 0; k < field.node_count(); ++k) {
-    field.node_displacement(k) = Eigen::Vector2d(x(static_cast<Eigen::Index>(2 * k)), x(static_cast<Eigen::Index>(2 * k + 1)));
+
+  /// Conjugate gradients on A x = b from `x`, preconditioned by the last factorization; true when
+  /// the residual fell below 1e-6 of b's within 40 steps (`x` is then the solution).
+  bool preconditioned_cg(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
+    const double goal = 1e-6 * b.norm();
+    Eigen::VectorXd r = b - A.selfadjointView<Eigen::Lower>() * x;
+    if (r.norm() <= goal) return true;
+    Eigen::VectorXd z = factor_.solve(r);
+    Eigen::VectorXd p = z;
+    double rz = r.dot(z);
+    for (int step = 0; step < 40; ++step) {
+      const Eigen::VectorXd Ap = A.selfadjointView<Eigen::Lower>() * p;
+      const double pAp = p.dot(Ap);
+      if (!(pAp > 0.0)) return false;
+      const double alpha = rz / pAp;
+      x += alpha * p;
+      r -= alpha * Ap;
+      if (r.norm() <= goal) return true;
+      z = factor_.solve(r);
+      const double rz_next = r.dot(z);
+      p = z + (rz_next / rz) * p;
+      rz = rz_next;
+    }
+    return false;
   }
-  return true;
-}
+
+  Eigen::Index unknowns_;
+  Eigen::SparseMatrix<double> smoothness_;
+  Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
+  bool factored_ = false;
+};
 
 /// The median and 95th percentile of `values` (NaN when empty); reorders them.
 inline std::array<double, 2> median_and_p95(std::vector<double>& values) {
@@ -244,8 +320,10 @@ inline std::array<double, 2> median_and_p95(std::vector<double>& values) {
 /// the source's walls onto the destination's (file comment). Throws `parameter_error` for bad
 /// parameters or an empty map; a source without walls near the destination's gives the rigid
 /// transform alone (`WarpResult::paired_points` 0).
+///
+/// `start` may say where the displacements start and where the source is broken (see WarpStart).
 inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& dest, const Similarity2& T_dest_source,
-                           const WarpParams& params = {}) {
+                           const WarpParams& params = {}, const WarpStart& start = {}) {
   params.validate();
   if (source.empty() || dest.empty()) throw parameter_error("fit_warp: both maps must have cells");
   const GridInfo g = GridInfo::of(source);
@@ -274,15 +352,23 @@ inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& des
                           detail::format_double(h) + " m)");
   }
   out.field = WarpField(T_dest_source, lo, h, columns, rows);
+  std::vector<int> node_piece;
+  for (int j = 0; j < rows; ++j) {
+    for (int i = 0; i < columns; ++i) {
+      const Eigen::Vector2d x = out.field.node_position(i, j);
+      if (start.displacement) out.field.node_displacement(out.field.node(i, j)) = start.displacement(x);
+      if (start.piece) node_piece.push_back(start.piece(x));
+    }
+  }
   if (points.empty() || lookup.empty()) return out;
 
-  const auto smoothness = detail::smoothness_terms(out.field, params);
+  detail::WarpSystem system(out.field, params, node_piece);
   constexpr std::size_t min_pairs = 10;
   for (const double gate : params.gates_m) {
     for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
       const auto pairs = detail::warp_pairs(out.field, points, sides, lookup, gate, params.keep_fraction);
       if (pairs.size() < min_pairs) break;
-      if (!detail::solve_warp(out.field, pairs, points, lookup, smoothness, params)) break;
+      if (!system.solve(out.field, pairs, points, lookup, params, iteration == 0)) break;
       out.paired_points = pairs.size();
     }
   }
