@@ -106,6 +106,14 @@ struct RobotMapParams {
   /// wavelength of that distortion (0: half the building's longer side, at least 10 m); longer
   /// is gentler (a building-wide drift rather than a wavy map)
   double bend_wavelength_m = 0.0;
+  /// Broken pieces (a failed loop closure): this many straight cuts across the building's longer
+  /// side, evenly spaced; everything beyond a cut is turned about the cut's middle by an angle
+  /// drawn from [break_min_rotation_rad, break_max_rotation_rad] (either sign) and shifted by up
+  /// to `break_shift_m`, on top of the cuts before it. The truth is `RobotMap::breaks`.
+  int break_count = 0;
+  double break_min_rotation_rad = 2.0 * pi / 180.0;
+  double break_max_rotation_rad = 10.0 * pi / 180.0;
+  double break_shift_m = 0.2;
   int max_clutter_per_room = 0;            ///< furniture blobs per explored room: 0..this
   double explored_fraction = 1.0;          ///< share of rooms the robot entered (corridors always)
   double speckle_per_m2 = 0.0;             ///< isolated occupied cells per m² of free space
@@ -166,6 +174,16 @@ struct BendField {
   }
 };
 
+/// One broken piece's cut of a generated robot map (`RobotMapParams::break_count`), in the
+/// layout's frame: layout points beyond the cut ((p − point) · normal > 0) are shown moved by
+/// `motion` (after the bend; the cuts in order, each on top of the ones before it).
+struct MapBreak {
+  Eigen::Vector2d point = Eigen::Vector2d::Zero();
+  Eigen::Vector2d normal = Eigen::Vector2d::UnitX();
+  Similarity2 motion;
+  bool beyond(const Eigen::Vector2d& p) const { return (p - point).dot(normal) > 0.0; }
+};
+
 /// A robot map of a building with the exact ground truth.
 struct RobotMap {
   OccupancyGrid grid;
@@ -176,10 +194,25 @@ struct RobotMap {
   std::vector<int> explored_areas;    ///< ids of the areas the robot entered, ascending
   std::vector<Polygon2> clutter;      ///< furniture, layout world frame
   BendField bend;                     ///< the smooth distortion (none unless `wall_bend_m`)
-  /// The layout point a robot-map point shows: the rigid transform, then the bend.
+  std::vector<MapBreak> breaks;       ///< the broken pieces' cuts (none unless `break_count`)
+  /// Which piece a layout point (rigid transform and bend applied) falls in: the number of cuts it
+  /// lies beyond (0: the piece that did not move).
+  int piece_at(const Eigen::Vector2d& bent) const {
+    int piece = 0;
+    for (const MapBreak& b : breaks) piece += b.beyond(bent);
+    return piece;
+  }
+  /// The motion of piece `k` (its first k cuts' motions, in order): layout → layout.
+  Similarity2 piece_motion(int k) const {
+    Similarity2 m;
+    for (int i = 0; i < k && i < static_cast<int>(breaks.size()); ++i) m = breaks[static_cast<std::size_t>(i)].motion * m;
+    return m;
+  }
+  /// The layout point a robot-map point shows: the rigid transform, the bend, then its piece's motion.
   Eigen::Vector2d true_dest(const Eigen::Vector2d& source_world) const {
-    const Eigen::Vector2d p = T_dest_source * source_world;
-    return p + bend(p);
+    Eigen::Vector2d p = T_dest_source * source_world;
+    p += bend(p);
+    return breaks.empty() ? p : piece_motion(piece_at(p)) * p;
   }
 };
 
@@ -226,6 +259,12 @@ inline void RobotMapParams::validate() const {
   non_negative(wall_noise_m, "wall_noise_m");
   non_negative(wall_bend_m, "wall_bend_m");
   non_negative(bend_wavelength_m, "bend_wavelength_m");
+  if (break_count < 0 || break_count > 20) throw parameter_error("RobotMapParams::break_count must be in [0, 20]");
+  non_negative(break_min_rotation_rad, "break_min_rotation_rad");
+  if (!(break_max_rotation_rad >= break_min_rotation_rad && break_max_rotation_rad < pi)) {
+    throw parameter_error("RobotMapParams::break_max_rotation_rad must be in [break_min_rotation_rad, pi)");
+  }
+  non_negative(break_shift_m, "break_shift_m");
   non_negative(speckle_per_m2, "speckle_per_m2");
   non_negative(margin_m, "margin_m");
   non_negative(seen_wall_m, "seen_wall_m");
@@ -656,6 +695,23 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
                               random.uniform(0, phase_range));
   robot.bend = BendField{params.wall_bend_m, wavelength, phase};
   const BendField& bend = robot.bend;
+  // Broken pieces: cuts across the longer side (drawn only when asked for, so that maps without
+  // them keep their random stream).
+  const bool along_x = bp.width_m >= bp.height_m;
+  for (int k = 0; k < params.break_count; ++k) {
+    MapBreak cut;
+    const double at = (k + 1.0) / (params.break_count + 1.0);
+    cut.point = along_x ? Eigen::Vector2d(at * bp.width_m, 0.5 * bp.height_m) : Eigen::Vector2d(0.5 * bp.width_m, at * bp.height_m);
+    cut.normal = along_x ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY();
+    const double turn = (random.chance(0.5) ? 1.0 : -1.0) *
+                        random.uniform(params.break_min_rotation_rad, params.break_max_rotation_rad);
+    const double direction = random.uniform(0.0, 2.0 * pi), shift = random.uniform(0.0, params.break_shift_m);
+    // Turned about the cut's middle (where the previous pieces' motions have put it), then shifted.
+    const Eigen::Vector2d pivot = robot.piece_motion(k) * cut.point;
+    cut.motion.rotation = turn;
+    cut.motion.translation = pivot - Eigen::Rotation2Dd(turn) * pivot + shift * Eigen::Vector2d(std::cos(direction), std::sin(direction));
+    robot.breaks.push_back(cut);
+  }
 
   std::vector<Box2> clutter_boxes;
   for (const auto& c : robot.clutter) {
@@ -668,6 +724,7 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
     for (int col = 0; col < width; ++col) {
       Eigen::Vector2d p = robot.T_dest_source * robot.grid.cell_center(col, row);
       p += bend(p);
+      if (!robot.breaks.empty()) p = robot.piece_motion(robot.piece_at(p)) * p;
       if (params.wall_noise_m > 0.0) p += params.wall_noise_m * Eigen::Vector2d(random.normal(), random.normal());
       const Eigen::Vector2i cell = layout.world_to_cell(p);
       CellState state = outside;
