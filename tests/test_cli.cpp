@@ -1,4 +1,4 @@
-// The areamatch program: help, info, generate, segment, match, warp, eval, and exit status 2 with a
+// The areamatch program: help, info, generate, segment, match, warp, assess, eval, and exit status 2 with a
 // message for bad input.
 #include <doctest/doctest.h>
 
@@ -308,6 +308,45 @@ TEST_CASE("warp: points carried across line for line, a resampled map, JSON; bad
   CHECK(refused.status == 1);
   CHECK(refused.out.find("nothing warped") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir + "/refused.csv"));
+}
+
+TEST_CASE("assess: a report, a picture, JSON; a map that cannot be placed exits 1 unless --same-building; bad input exits 2") {
+  const std::string dir = areamatch_test::temp_dir() + "/assess_pair";
+  REQUIRE(run("generate " + dir + " --seed 9 --width 20 --height 14 --rotation 50 --explored 0.7").status == 0);
+  const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
+  const Run report = run("assess " + pair + " --png " + dir + "/assess.png", false);
+  INFO(report.out);
+  REQUIRE(report.status == 0);
+  for (const char* part : {"wall error under the rigid answer", "wall error under the warp", "brokenness: 0 broken pieces",
+                           "coverage:", "topology:"}) {
+    CHECK_MESSAGE(report.out.find(part) != std::string::npos, part);
+  }
+  CHECK(std::filesystem::file_size(dir + "/assess.png") > 0);
+  const Run json = run("assess " + pair + " --json", false);
+  REQUIRE(json.status == 0);
+  CHECK(json.out.rfind("{\"ok\": true", 0) == 0);
+  CHECK(json.out.find('\n') == json.out.size() - 1);
+  for (const char* key : {"\"rigid_walls\"", "\"brokenness\"", "\"coverage\"", "\"topology\"", "\"area_displacement\""}) {
+    CHECK_MESSAGE(json.out.find(key) != std::string::npos, key);
+  }
+  // Another building: not placed, exit 1 with the reason and the way out; --same-building assesses it anyway.
+  const std::string other = areamatch_test::temp_dir() + "/assess_other";
+  REQUIRE(run("generate " + other + " --seed 1234 --width 24 --height 26").status == 0);
+  const std::string cross = dir + "/robot.yaml " + other + "/layout.yaml";
+  const Run refused = run("assess " + cross);
+  CHECK(refused.status == 1);
+  CHECK(refused.out.find("could not be placed") != std::string::npos);
+  const Run forced = run("assess " + cross + " --same-building");
+  CHECK(forced.status == 0);
+  CHECK(forced.out.find("assessed because of --same-building") != std::string::npos);
+  // Bad input: exit 2, the problem named.
+  const Run missing = run("assess " + dir + "/missing.yaml " + dir + "/layout.yaml");
+  CHECK(missing.status == 2);
+  CHECK(missing.out.find("missing.yaml") != std::string::npos);
+  CHECK(run("assess " + pair + " --error-scale 0").status == 2);
+  CHECK(run("assess " + pair + " --bend-length -2").status == 2);
+  CHECK(run("assess " + pair + " --estimate-scale").status == 2);
+  CHECK(run("assess " + dir + "/robot.yaml").status == 2);
 }
 
 TEST_CASE("eval: a generated manifest, its report files, repeat, no ground truth") {

@@ -4,6 +4,7 @@
 //   areamatch segment MAP         the map's Area Graph, with pictures, labels and JSON
 //   areamatch match SOURCE DEST   the transform between two maps, with a picture and JSON
 //   areamatch warp SOURCE DEST    a smooth warp beyond the rigid transform; carries points across
+//   areamatch assess MAP REF      map evaluation: wall error, local error, brokenness, coverage, topology
 //   areamatch merge MAP MAP...    several maps in one frame, fused into one map
 //   areamatch eval MANIFEST       every pair of a manifest, scored against its ground truth
 //   areamatch generate OUTDIR     a synthetic layout + robot map pair with ground truth
@@ -675,8 +676,11 @@ const std::string kWarpHelp =
                 "  --grid OUT.yaml          SOURCE resampled into DEST's frame through the warp (PGM + YAML)\n"
                 "  --json                   print exactly one JSON object: the match, the warp's figures and the\n"
                 "                           points (unless --out)\n"
-                "  --control-spacing M      control grid spacing of the warp, metres (default 1.0)\n"
-                "  --bend-length M          shortest bend the warp follows, metres (default 8.0)\n") +
+                "  --control-spacing M      control grid spacing of the warp, metres (default ") +
+    format_double(areamatch::WarpParams{}.control_spacing_m) +
+    ")\n"
+    "  --bend-length M          shortest bend the warp follows, metres (default " +
+    format_double(areamatch::WarpParams{}.bend_length_m) + ")\n" +
     kPairOptionsHelp;
 
 /// One line of a points file: a pixel, or a line to copy (comment, blank).
@@ -765,15 +769,9 @@ int run_warp(const std::vector<std::string>& tokens) {
   }
   auto number = [](double v, int digits) { return std::isfinite(v) ? format_fixed(v, digits) : std::string("null"); };
   if (args.flag("json")) {
-    std::cout << "{\"match\": " << areamatch::match_result_json(result) << ", \"warp\": {\"control_spacing_m\": "
-              << format_double(warp_params.control_spacing_m) << ", \"bend_length_m\": " << format_double(warp_params.bend_length_m)
-              << ", \"source_wall_points\": " << warp.source_wall_points << ", \"paired_points\": " << warp.paired_points
-              << ", \"rigid_median_m\": " << number(warp.rigid_median_m, 4) << ", \"rigid_p95_m\": " << number(warp.rigid_p95_m, 4)
-              << ", \"warped_median_m\": " << number(warp.warped_median_m, 4)
-              << ", \"warped_p95_m\": " << number(warp.warped_p95_m, 4)
-              << ", \"median_displacement_m\": " << number(warp.median_displacement_m, 4)
-              << ", \"max_displacement_m\": " << number(warp.max_displacement_m, 4) << ", \"warp_s\": " << number(warp_s, 4)
-              << "}" << (args.text("points") && !args.text("out") ? ", \"points\": [" + json_points + "]" : "") << "}\n";
+    std::cout << "{\"match\": " << areamatch::match_result_json(result)
+              << ", \"warp\": " << areamatch::warp_result_json(warp, warp_params, warp_s)
+              << (args.text("points") && !args.text("out") ? ", \"points\": [" + json_points + "]" : "") << "}\n";
   } else {
     if (args.text("points") && !args.text("out")) std::cout << csv.str();
     std::cerr << "areamatch warp: walls " << number(warp.rigid_median_m, 3) << " m off (median) under the rigid answer, "
@@ -781,6 +779,114 @@ int run_warp(const std::vector<std::string>& tokens) {
               << " -> " << number(warp.warped_p95_m, 3) << " m); displacement median " << number(warp.median_displacement_m, 3)
               << " m, max " << number(warp.max_displacement_m, 3) << " m; " << format_fixed(1000.0 * warp_s, 1) << " ms\n";
   }
+  return 0;
+}
+
+// -------------------------------------------------------------------------------------- assess
+
+const std::string kAssessHelp =
+    std::string("usage: areamatch assess MAP REFERENCE [--json] [--png OUT.png] [options]\n"
+                "Evaluates MAP (e.g. a SLAM map) against REFERENCE (a floor plan, a laser-scanner map): MAP is\n"
+                "matched onto REFERENCE and bent onto it by a smooth warp; the report says where MAP is wrong and\n"
+                "by how much (wall error both ways under the rigid answer and under the warp, each area's\n"
+                "displacement), how broken (rigid pieces), how complete (coverage) and how consistently\n"
+                "connected (topology). docs/assessment.md defines every number.\n"
+                "Exit status: 0 assessed, 1 MAP could not be placed on REFERENCE (with the reason), 2 bad input or usage.\n"
+                "Options:\n"
+                "  --json                   print exactly one JSON object with every number\n"
+                "  --png OUT.png            picture: REFERENCE with MAP's walls coloured by local error, broken pieces\n"
+                "                           outlined, a legend\n"
+                "  --same-building          the maps show the same building (MAP against its own ground truth): assess\n"
+                "                           under the best transform even when the match is rejected, and say so\n"
+                "  --error-scale M          the local error the picture draws fully red, metres (default 0.5)\n"
+                "  --control-spacing M      control grid spacing of the warp, metres (default ") +
+    format_double(areamatch::WarpParams{}.control_spacing_m) +
+    ")\n"
+    "  --bend-length M          shortest bend the warp follows, metres (default " +
+    format_double(areamatch::WarpParams{}.bend_length_m) + ")\n" + kPairOptionsHelp;
+
+std::string assessment_text(const areamatch::MapAssessment& a) {
+  auto m = [](double v) { return std::isfinite(v) ? format_fixed(v, 3) + " m" : std::string("n/a"); };
+  auto pct = [](double v) { return std::isfinite(v) ? format_fixed(100.0 * v, 1) + " %" : std::string("n/a"); };
+  auto walls = [&](const char* title, const areamatch::WallErrors& w) {
+    const auto& f = w.map_to_reference;
+    const auto& b = w.reference_to_map;
+    return std::string(title) + "\n    map walls to reference walls:  mean " + m(f.mean_m) + ", median " + m(f.median_m) +
+           ", 95th percentile " + m(f.p95_m) + "; " + pct(f.within_tolerance) + " within tolerance, " + pct(f.at_cap) +
+           " with no wall near (" + std::to_string(f.points) + " points)\n    reference walls to map walls:  mean " +
+           m(b.mean_m) + ", median " + m(b.median_m) + ", 95th percentile " + m(b.p95_m) + "; " + pct(b.within_tolerance) +
+           " within tolerance, " + pct(b.at_cap) + " not drawn (" + std::to_string(b.points) + " points)\n";
+  };
+  const areamatch::Similarity2& T = a.match.T_dest_source;
+  std::ostringstream out;
+  out << "placed: rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2) << " deg, translation ("
+      << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3) << ") m"
+      << (T.reflected ? ", reflected" : "") << ", p_correct " << format_fixed(a.match.p_correct, 3)
+      << (a.decision_overridden ? " (the match was rejected; assessed because of --same-building)" : "") << "\n";
+  out << walls("wall error under the rigid answer:", a.rigid_walls);
+  out << walls("wall error under the warp:", a.warped_walls);
+  out << "local error (the warp's displacement at the map's walls): median " << m(a.warp.median_displacement_m) << ", max "
+      << m(a.warp.max_displacement_m) << "\n";
+  const auto& pieces = a.brokenness.pieces;
+  out << "brokenness: " << a.brokenness.broken_pieces() << " broken piece" << (a.brokenness.broken_pieces() == 1 ? "" : "s")
+      << " (" << pieces.size() << " rigid piece" << (pieces.size() == 1 ? "" : "s") << ")\n";
+  for (std::size_t k = 0; k < pieces.size(); ++k) {
+    out << "    piece " << k + 1 << ": " << pieces[k].areas.size() << " areas, " << format_fixed(pieces[k].size_m2, 1) << " m2";
+    if (k == 0) out << ", the main piece";
+    else out << ", turned " << format_fixed(pieces[k].rotation_rad * 180.0 / areamatch::pi, 2) << " deg and shifted " << m(pieces[k].shift_m) << " against it";
+    out << "\n";
+  }
+  const auto& c = a.coverage;
+  out << "coverage: " << pct(c.explored_share) << " of the reference's rooms and corridors explored (" << format_fixed(c.explored_m2, 1)
+      << " of " << format_fixed(c.reference_m2, 1) << " m2); reference areas found " << c.found << ", partly " << c.partly_found
+      << ", missed " << c.missed << "; map areas the reference lacks " << c.extra_map_areas.size()
+      << "; reference passages missing " << c.missing_passages.size() << "\n";
+  const auto& t = a.topology;
+  out << "topology: " << t.map_consistent << " of " << t.map_passages
+      << " map passages join the same areas in the reference; " << t.reference_consistent << " of " << t.reference_passages
+      << " reference passages are in the map\n";
+  out << "time: match " << format_fixed(1000.0 * a.timings.match_s, 1) << " ms, warp " << format_fixed(1000.0 * a.timings.warp_s, 1)
+      << " ms, assessment " << format_fixed(1000.0 * a.timings.assess_s, 1) << " ms\n";
+  return out.str();
+}
+
+int run_assess(const std::vector<std::string>& tokens) {
+  const Args args(tokens, merged(kPairFlags, {"json", "same-building"}),
+                  merged(kPairOptions, {"png", "error-scale", "control-spacing", "bend-length"}));
+  if (args.flag("help")) {
+    std::cout << kAssessHelp;
+    return 0;
+  }
+  args.expect_positional(2, "MAP REFERENCE");
+  const areamatch::MapPairOptions options = map_pair_options(args);
+  if (options.estimate_scale) {
+    throw UsageError("assess measures MAP in its own metres: give its resolution (--source-resolution) instead of --estimate-scale");
+  }
+  areamatch::AssessParams params;
+  params.assume_same_building = args.flag("same-building");
+  if (const auto v = args.number("control-spacing", true)) params.warp.control_spacing_m = *v;
+  if (const auto v = args.number("bend-length", true)) params.warp.bend_length_m = *v;
+  const double error_scale = args.number("error-scale", true).value_or(0.5);
+  params.validate();
+
+  note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
+  note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
+  const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
+  areamatch::MapAssessment assessment =
+      areamatch::assess_match(run.source, run.source_graph, run.dest, run.dest_graph, run.result, params);
+  assessment.timings.match_s = run.result.timings.total_s;
+  assessment.timings.total_s += run.result.timings.total_s;
+  if (const auto png = args.text("png")) {
+    areamatch::write_png(*png, areamatch::render_assessment(run.source, run.source_graph, run.dest, assessment, error_scale));
+  }
+  if (args.flag("json")) std::cout << areamatch::assessment_json(assessment) << "\n";
+  if (!assessment.ok) {
+    std::cerr << "areamatch assess: " << assessment.reason
+              << (run.result.matched_areas.empty() ? "" : " (if MAP and REFERENCE are the same building, --same-building assesses it all the same)")
+              << "\n";
+    return 1;
+  }
+  if (!args.flag("json")) std::cout << assessment_text(assessment);
   return 0;
 }
 
@@ -1264,6 +1370,7 @@ const char* kMainHelp =
     "  segment MAP       split a map into areas and passages (its Area Graph), with pictures\n"
     "  match SOURCE DEST find the transform between two maps of one building\n"
     "  warp SOURCE DEST  bend one map onto another beyond the rigid transform, and carry points across\n"
+    "  assess MAP REF    where MAP is wrong against REF (a plan, a ground truth), how broken, how complete\n"
     "  merge MAP MAP...  place several maps of one building in one frame and fuse them into one map\n"
     "  eval MANIFEST     match every pair of a manifest and score it against its ground truth\n"
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
@@ -1281,7 +1388,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"warp", run_warp}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
+      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"warp", run_warp}, {"assess", run_assess}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -4,6 +4,7 @@
 /// ROS YAML) and SVG output are in <areamatch/io.hpp>, target `areamatch::io`.
 
 #include "area_graph.hpp"
+#include "assess.hpp"
 #include "error.hpp"
 #include "geometry.hpp"
 #include "grid.hpp"

@@ -6,9 +6,11 @@
 /// equal text.
 
 #include "../area_graph.hpp"
+#include "../assess/report.hpp"
 #include "../detail/format.hpp"
 #include "../match/result.hpp"
 #include "../merge.hpp"
+#include "../warp/fit.hpp"
 
 #include <string>
 #include <utility>
@@ -140,6 +142,94 @@ inline std::string match_result_json(const MatchResult& r) {
          ", \"features_s\": " + json_number(t.features_s) +
          ", \"hypotheses_s\": " + json_number(t.hypotheses_s) + ", \"clustering_s\": " + json_number(t.clustering_s) +
          ", \"selection_s\": " + json_number(t.selection_s) + "}}";
+  return out;
+}
+
+/// A warp's figures (what `areamatch warp --json` prints under "warp"), metres and seconds.
+inline std::string warp_result_json(const WarpResult& w, const WarpParams& params, double warp_s) {
+  using detail::json_number;
+  return "{\"control_spacing_m\": " + json_number(params.control_spacing_m) + ", \"bend_length_m\": " +
+         json_number(params.bend_length_m) + ", \"source_wall_points\": " + std::to_string(w.source_wall_points) +
+         ", \"paired_points\": " + std::to_string(w.paired_points) + ", \"rigid_median_m\": " + json_number(w.rigid_median_m) +
+         ", \"rigid_p95_m\": " + json_number(w.rigid_p95_m) + ", \"warped_median_m\": " + json_number(w.warped_median_m) +
+         ", \"warped_p95_m\": " + json_number(w.warped_p95_m) + ", \"median_displacement_m\": " +
+         json_number(w.median_displacement_m) + ", \"max_displacement_m\": " + json_number(w.max_displacement_m) +
+         ", \"warp_s\": " + json_number(warp_s) + "}";
+}
+
+namespace detail {
+
+inline std::string wall_error_json(const WallErrorStats& s) {
+  return "{\"points\": " + std::to_string(s.points) + ", \"mean_m\": " + json_number(s.mean_m) + ", \"median_m\": " +
+         json_number(s.median_m) + ", \"p95_m\": " + json_number(s.p95_m) + ", \"within_tolerance\": " +
+         json_number(s.within_tolerance) + ", \"at_cap\": " + json_number(s.at_cap) + "}";
+}
+
+inline std::string wall_errors_json(const WallErrors& w) {
+  return "{\"map_to_reference\": " + wall_error_json(w.map_to_reference) +
+         ", \"reference_to_map\": " + wall_error_json(w.reference_to_map) + "}";
+}
+
+inline std::string int_list_json(const std::vector<int>& values) {
+  std::string out = "[";
+  for (std::size_t i = 0; i < values.size(); ++i) out += (i ? ", " : "") + std::to_string(values[i]);
+  return out + "]";
+}
+
+}  // namespace detail
+
+/// A map assessment as one JSON object on one line (what `areamatch assess --json` prints):
+/// ok (and reason), whether the decision was overridden, the match, the warp, wall errors both
+/// ways under the rigid answer and under the warp, each map area's displacement, the pieces
+/// (brokenness), coverage, topology and timings. Metres, degrees, seconds.
+inline std::string assessment_json(const MapAssessment& a) {
+  using detail::json_number;
+  std::string out = "{\"ok\": " + std::string(a.ok ? "true" : "false");
+  if (!a.ok) out += ", \"reason\": " + detail::json_quote(a.reason);
+  out += ", \"decision_overridden\": " + std::string(a.decision_overridden ? "true" : "false");
+  out += ", \"match\": " + match_result_json(a.match);
+  if (a.ok) {
+    out += ", \"warp\": " + warp_result_json(a.warp, a.params.warp, a.timings.warp_s);
+    out += ", \"rigid_walls\": " + detail::wall_errors_json(a.rigid_walls);
+    out += ", \"warped_walls\": " + detail::wall_errors_json(a.warped_walls);
+    out += ", \"area_displacement\": [";
+    for (std::size_t i = 0; i < a.area_displacement.size(); ++i) {
+      const auto& d = a.area_displacement[i];
+      out += std::string(i ? ", " : "") + "{\"area\": " + std::to_string(d.area) + ", \"median_m\": " + json_number(d.median_m) +
+             ", \"max_m\": " + json_number(d.max_m) + "}";
+    }
+    out += "], \"brokenness\": {\"broken_pieces\": " + std::to_string(a.brokenness.broken_pieces()) + ", \"pieces\": [";
+    for (std::size_t k = 0; k < a.brokenness.pieces.size(); ++k) {
+      const RigidPiece& p = a.brokenness.pieces[k];
+      out += std::string(k ? ", " : "") + "{\"areas\": " + detail::int_list_json(p.areas) + ", \"size_m2\": " +
+             json_number(p.size_m2) + ", \"rotation_deg\": " + json_number(p.rotation_rad * 180.0 / pi) +
+             ", \"shift_m\": " + json_number(p.shift_m) + ", \"wall_agreement\": " + json_number(p.wall_agreement) +
+             ", \"transform\": {\"rotation_deg\": " + json_number(p.T_reference_map.rotation * 180.0 / pi) +
+             ", \"translation_m\": [" + json_number(p.T_reference_map.translation.x()) + ", " +
+             json_number(p.T_reference_map.translation.y()) + "]}}";
+    }
+    const Coverage& c = a.coverage;
+    out += "]}, \"coverage\": {\"explored_share\": " + json_number(c.explored_share) + ", \"explored_m2\": " +
+           json_number(c.explored_m2) + ", \"reference_m2\": " + json_number(c.reference_m2) + ", \"found\": " +
+           std::to_string(c.found) + ", \"partly_found\": " + std::to_string(c.partly_found) + ", \"missed\": " +
+           std::to_string(c.missed) + ", \"reference_areas\": [";
+    for (std::size_t i = 0; i < c.reference_areas.size(); ++i) {
+      const auto& r = c.reference_areas[i];
+      out += std::string(i ? ", " : "") + "{\"area\": " + std::to_string(r.area) + ", \"explored_share\": " +
+             json_number(r.explored_share) + ", \"state\": \"" + to_string(r.state) + "\", \"map_areas\": " +
+             detail::int_list_json(r.map_areas) + "}";
+    }
+    out += "], \"extra_map_areas\": " + detail::int_list_json(c.extra_map_areas) +
+           ", \"missing_passages\": " + detail::int_list_json(c.missing_passages) + "}";
+    const TopologyConsistency& t = a.topology;
+    out += ", \"topology\": {\"map_passages\": " + std::to_string(t.map_passages) + ", \"map_consistent\": " +
+           std::to_string(t.map_consistent) + ", \"reference_passages\": " + std::to_string(t.reference_passages) +
+           ", \"reference_consistent\": " + std::to_string(t.reference_consistent) + ", \"inconsistent_map_passages\": " +
+           detail::int_list_json(t.inconsistent_map_passages) + "}";
+  }
+  out += ", \"timings\": {\"match_s\": " + json_number(a.timings.match_s) + ", \"warp_s\": " +
+         json_number(a.timings.warp_s) + ", \"assess_s\": " + json_number(a.timings.assess_s) + ", \"total_s\": " +
+         json_number(a.timings.total_s) + "}}";
   return out;
 }
 

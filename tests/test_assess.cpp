@@ -1,0 +1,177 @@
+// Map assessment (assess.hpp): generated robot maps whose exact truth is known — bends, broken
+// pieces, explored share — assessed against their layouts; refusals and bad parameters.
+#include <areamatch/areamatch.hpp>
+#include <areamatch/io/json.hpp>
+#include <doctest/doctest.h>
+#include "test_support.hpp"
+
+#include <cmath>
+#include <vector>
+
+using namespace areamatch;
+
+namespace {
+
+struct AssessCase {
+  SyntheticBuilding building;
+  RobotMap robot;
+  AreaGraph map_graph, reference_graph;
+  MatchResult match;
+};
+
+AssessCase assess_case(std::uint64_t seed, const RobotMapParams& rp) {
+  AssessCase c{generate_building({}, seed), {}, {}, {}, {}};
+  c.robot = make_robot_map(c.building, rp, seed + 1);
+  const Matcher<> matcher;
+  c.map_graph = matcher.segmenter.segment(c.robot.grid);
+  c.reference_graph = matcher.segmenter.segment(c.building.layout);
+  c.match = matcher.match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph);
+  return c;
+}
+
+RobotMapParams plain_robot(double rotation_rad) {
+  RobotMapParams rp;
+  rp.rotation_rad = rotation_rad;
+  rp.wall_noise_m = 0.02;
+  rp.max_clutter_per_room = 2;
+  return rp;
+}
+
+}  // namespace
+
+TEST_CASE("an undistorted generated map: walls in place both ways, one piece, coverage and topology as built") {
+  RobotMapParams rp = plain_robot(0.7);
+  rp.explored_fraction = 0.6;
+  const AssessCase c = assess_case(1201, rp);
+  REQUIRE(c.match.ok);
+  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match);
+  REQUIRE(a.ok);
+  CHECK_FALSE(a.decision_overridden);
+  CHECK(a.rigid_walls.map_to_reference.median_m < 0.05);
+  CHECK(a.rigid_walls.reference_to_map.median_m < 0.05);
+  CHECK(a.rigid_walls.reference_to_map.within_tolerance > 0.9);
+  CHECK(a.warp.median_displacement_m < 0.05);
+  CHECK(a.brokenness.pieces.size() == 1);
+  CHECK(a.brokenness.broken_pieces() == 0);
+  CHECK(a.area_displacement.size() == c.map_graph.areas.size());
+  // 60 % of the rooms explored (and the corridors): clearly less than all, clearly more than half the rooms' share.
+  CHECK(a.coverage.explored_share > 0.4);
+  CHECK(a.coverage.explored_share < 0.95);
+  CHECK(a.coverage.found + a.coverage.partly_found + a.coverage.missed == c.reference_graph.areas.size());
+  CHECK(a.coverage.missed > 0);
+  CHECK(a.topology.map_passages > 0);
+  CHECK(a.topology.share() > 0.8);
+  // Each reference area the robot entered is found; each it never entered is not.
+  const Similarity2 back = c.robot.T_dest_source.inverse();
+  for (const auto& r : a.coverage.reference_areas) {
+    if (r.state != AreaFound::found) continue;
+    const Eigen::Vector2i cell = c.robot.grid.world_to_cell(back * c.reference_graph.areas[static_cast<std::size_t>(r.area)].centroid);
+    if (c.robot.grid.contains(cell.x(), cell.y())) CHECK(c.robot.grid.at(cell.x(), cell.y()) != CellState::unknown);
+  }
+}
+
+TEST_CASE("a broken generated map: the broken piece is found with its turn") {
+  const int cases = areamatch_test::quick_tests() ? 1 : 3;
+  for (int i = 0; i < cases; ++i) {
+    RobotMapParams rp = plain_robot(0.4 + 1.3 * i);
+    rp.break_count = 1;
+    rp.break_min_rotation_rad = rp.break_max_rotation_rad = (4.0 + 2.0 * i) * pi / 180.0;
+    const AssessCase c = assess_case(1300 + static_cast<std::uint64_t>(i), rp);
+    REQUIRE(c.robot.breaks.size() == 1);
+    AssessParams params;
+    params.assume_same_building = true;  // a broken map may be rejected; it is this building
+    const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
+    REQUIRE(a.ok);
+    REQUIRE(a.brokenness.pieces.size() == 2);
+    const double true_turn = std::abs(c.robot.breaks.front().motion.rotation);
+    CHECK(std::abs(std::abs(a.brokenness.pieces[1].rotation_rad) - true_turn) < 0.5 * pi / 180.0);
+    // The pieces lie on either side of the cut.
+    const Eigen::Vector2d& normal = c.robot.breaks.front().normal;
+    const auto side_of = [&](const RigidPiece& p) {
+      const Eigen::Vector2d q = c.robot.T_dest_source * p.centroid;
+      return (q - c.robot.breaks.front().point).dot(normal) > 0.0;
+    };
+    CHECK(side_of(a.brokenness.pieces[0]) != side_of(a.brokenness.pieces[1]));
+  }
+}
+
+TEST_CASE("the generator's broken pieces: truth and random stream") {
+  RobotMapParams rp = plain_robot(0.5);
+  const SyntheticBuilding building = generate_building({}, 1400);
+  const RobotMap plain = make_robot_map(building, rp, 7);
+  rp.break_count = 2;
+  const RobotMap broken = make_robot_map(building, rp, 7);
+  REQUIRE(broken.breaks.size() == 2);
+  for (const auto& b : broken.breaks) {
+    const double turn = std::abs(b.motion.rotation) * 180.0 / pi;
+    CHECK(turn >= 2.0);
+    CHECK(turn <= 10.0);
+  }
+  // The cuts split the building's longer side in three.
+  CHECK(broken.piece_motion(0).rotation == 0.0);
+  CHECK(broken.piece_motion(2).rotation == doctest::Approx(broken.breaks[0].motion.rotation + broken.breaks[1].motion.rotation));
+  // Without breaks nothing is drawn: the same map as before breaks existed.
+  rp.break_count = 0;
+  CHECK(make_robot_map(building, rp, 7).grid.cells() == plain.grid.cells());
+  rp.break_count = -1;
+  CHECK_THROWS_AS(make_robot_map(building, rp, 7), parameter_error);
+}
+
+TEST_CASE("a map that cannot be placed is not assessed against a guess, unless the caller says it is the building") {
+  const AssessCase c = assess_case(1500, plain_robot(0.2));
+  const SyntheticBuilding other = generate_building({}, 1501);
+  const Matcher<> matcher;
+  const AreaGraph other_graph = matcher.segmenter.segment(other.layout);
+  const MatchResult wrong = matcher.match(c.robot.grid, c.map_graph, other.layout, other_graph);
+  REQUIRE_FALSE(wrong.ok);
+  const MapAssessment refused = assess_match(c.robot.grid, c.map_graph, other.layout, other_graph, wrong);
+  CHECK_FALSE(refused.ok);
+  CHECK(refused.reason.find("could not be placed") != std::string::npos);
+  CHECK(assessment_json(refused).find("\"ok\": false") != std::string::npos);
+  if (!wrong.matched_areas.empty()) {
+    AssessParams params;
+    params.assume_same_building = true;
+    const MapAssessment forced = assess_match(c.robot.grid, c.map_graph, other.layout, other_graph, wrong, params);
+    CHECK(forced.ok);
+    CHECK(forced.decision_overridden);
+  }
+  // A graph that is not the map's segmentation is refused.
+  CHECK_THROWS_AS(assess_match(c.robot.grid, c.reference_graph, c.building.layout, c.reference_graph, c.match), parameter_error);
+}
+
+TEST_CASE("an assessment is deterministic and its JSON and picture hold every part") {
+  const AssessCase c = assess_case(1600, plain_robot(1.1));
+  REQUIRE(c.match.ok);
+  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match);
+  const MapAssessment b = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match);
+  auto without_timings = [](std::string json) { return json.substr(0, json.find("\"timings\"")); };
+  CHECK(without_timings(assessment_json(a)) == without_timings(assessment_json(b)));
+  const std::string json = assessment_json(a);
+  for (const char* key : {"\"rigid_walls\"", "\"warped_walls\"", "\"map_to_reference\"", "\"reference_to_map\"", "\"area_displacement\"",
+                          "\"brokenness\"", "\"pieces\"", "\"coverage\"", "\"reference_areas\"", "\"topology\"", "\"warp\""}) {
+    CHECK_MESSAGE(json.find(key) != std::string::npos, key);
+  }
+  const RgbImage picture = render_assessment(c.robot.grid, c.map_graph, c.building.layout, a);
+  CHECK(picture.width >= c.building.layout.width());
+  CHECK(picture.height > c.building.layout.height());  // the legend below
+}
+
+TEST_CASE("bad assessment parameters are refused by name") {
+  auto refused = [](auto change, const char* name) {
+    AssessParams p;
+    change(p);
+    try {
+      p.validate();
+      FAIL("accepted bad " << name);
+    } catch (const parameter_error& e) {
+      CHECK(std::string(e.what()).find(name) != std::string::npos);
+    }
+  };
+  refused([](AssessParams& p) { p.wall_distance_cap_m = 0.0; }, "wall_distance_cap_m");
+  refused([](AssessParams& p) { p.wall_tolerance_m = -1.0; }, "wall_tolerance_m");
+  refused([](AssessParams& p) { p.piece_tile_m = 0.0; }, "piece_tile_m");
+  refused([](AssessParams& p) { p.found_share = 1.5; }, "found_share");
+  refused([](AssessParams& p) { p.partly_found_share = 0.8; }, "partly_found_share");
+  refused([](AssessParams& p) { p.sample_cell_m = std::nan(""); }, "sample_cell_m");
+  refused([](AssessParams& p) { p.warp.bend_length_m = 0.0; }, "bend_length_m");
+}

@@ -1,0 +1,186 @@
+// assess_generated [COUNT] [FIRST_SEED]: map assessment judged on generated distorted robot maps
+// whose exact truth is known (docs/assessment.md). Each pair: a generated building, its robot map
+// bent by a smooth drift (0.2–1.0 m) and broken into 0–3 pieces (2–10°); the map is assessed
+// against the layout and compared with the truth:
+//   warp error   the distance of the map's wall points from where they truly belong, under the
+//                rigid answer and under the warp (median, 95th percentile)
+//   pieces       the broken pieces found against the true count (pieces holding ≥ 15 m² of the
+//                map's free space), each found piece's turn against its true piece's
+//   coverage     the share of the layout's rooms and corridors explored, against the truth
+// One tab-separated line per pair, then a summary.
+#include <areamatch/areamatch.hpp>
+
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
+#include <iostream>
+#include <map>
+#include <string>
+#include <vector>
+
+namespace {
+
+using areamatch::pi;
+
+double percentile(std::vector<double> v, double q) {
+  if (v.empty()) return std::nan("");
+  std::sort(v.begin(), v.end());
+  return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
+}
+
+struct PairTruth {
+  int pieces = 1;
+  double coverage = 0.0;
+  std::vector<int> piece_of_area;  // per map area: the true piece holding most of its cells
+};
+
+PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph& map_graph,
+                   const areamatch::AreaRaster& reference_raster, double min_piece_m2) {
+  PairTruth t;
+  const auto& grid = robot.grid;
+  std::map<int, double> piece_m2;
+  std::vector<std::map<int, int>> votes(map_graph.areas.size());
+  std::vector<char> seen(reference_raster.centres.size(), 0);
+  const double cell_m2 = grid.resolution() * grid.resolution();
+  for (int row = 0; row < grid.height(); ++row) {
+    for (int col = 0; col < grid.width(); ++col) {
+      if (grid.at(col, row) != areamatch::CellState::free) continue;
+      const Eigen::Vector2d s = grid.cell_center(col, row);
+      Eigen::Vector2d bent = robot.T_dest_source * s;
+      bent += robot.bend(bent);
+      const int piece = robot.piece_at(bent);
+      const int label = map_graph.labels[grid.index(col, row)];
+      if (label >= 0) {
+        piece_m2[piece] += cell_m2;
+        ++votes[static_cast<std::size_t>(label)][piece];
+      }
+    }
+  }
+  // Coverage: the robot cell that truly shows each raster centre, found by inverting the truth
+  // (each piece's motion, then the bend by fixed point, then the rigid transform).
+  const areamatch::Similarity2 back = robot.T_dest_source.inverse();
+  for (std::size_t k = 0; k < reference_raster.centres.size(); ++k) {
+    const Eigen::Vector2d& c = reference_raster.centres[k];
+    for (int piece = 0; piece <= static_cast<int>(robot.breaks.size()); ++piece) {
+      const Eigen::Vector2d bent = robot.piece_motion(piece).inverse() * c;
+      if (robot.piece_at(bent) != piece) continue;
+      Eigen::Vector2d p = bent;  // p + bend(p) = bent
+      for (int it = 0; it < 100; ++it) p = bent - robot.bend(p);
+      const Eigen::Vector2i cell = grid.world_to_cell(back * p);
+      if (grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == areamatch::CellState::free) seen[k] = 1;
+      break;
+    }
+  }
+  t.pieces = 0;
+  for (const auto& [piece, m2] : piece_m2) t.pieces += m2 >= min_piece_m2;
+  t.pieces = std::max(1, t.pieces);
+  std::size_t explored = 0;
+  for (const char v : seen) explored += v != 0;
+  t.coverage = static_cast<double>(explored) / static_cast<double>(std::max<std::size_t>(1, reference_raster.labelled_count()));
+  for (const auto& v : votes) {
+    int best = 0, most = -1;
+    for (const auto& [piece, n] : v) {
+      if (n > most) best = piece, most = n;
+    }
+    t.piece_of_area.push_back(best);
+  }
+  return t;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  const int count = argc > 1 ? std::atoi(argv[1]) : 60;
+  const std::uint64_t first_seed = argc > 2 ? std::strtoull(argv[2], nullptr, 10) : 4300;
+  areamatch::Matcher<> matcher;
+  areamatch::AssessParams params;
+  params.assume_same_building = true;  // the generated map is of the layout's building
+  std::printf("seed\tbend_m\tbreaks\tok\trigid_med\trigid_p95\twarp_med\twarp_p95\ttrue_pieces\tfound_pieces\tmax_turn_err_deg\t"
+              "true_cov\tcov\tassess_s\tmatch_s\n");
+  int placed = 0, strong = 0, strong_ok = 0, pieces_exact = 0, turns_ok = 0, coverage_ok = 0;
+  std::vector<double> strong_med, strong_p95, warp_times, match_times;
+  for (int i = 0; i < count; ++i) {
+    const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
+    areamatch::BuildingParams bp;
+    bp.width_m = 30.0 + 4.0 * (i % 6);
+    bp.height_m = 20.0 + 2.0 * (i % 4);
+    const auto building = areamatch::generate_building(bp, seed);
+    areamatch::RobotMapParams rp;
+    rp.rotation_rad = (37.0 + 53.0 * i) * pi / 180.0;
+    rp.wall_noise_m = 0.03;
+    rp.max_clutter_per_room = 3;
+    rp.speckle_per_m2 = 0.02;
+    rp.wall_bend_m = 0.2 + 0.2 * (i % 5);
+    // Building-wide drift: the sines' wavelength four times the building's longer side, so that a
+    // bend of 1 m turns the map by about 2 degrees from one end to the other (shorter ones make a
+    // wavy map, strained by 10 % and more, that no set of rigid pieces explains).
+    rp.bend_wavelength_m = 4.0 * std::max(bp.width_m, bp.height_m);
+    rp.break_count = i % 4;
+    const auto robot = areamatch::make_robot_map(building, rp, seed);
+    const auto map_graph = matcher.segmenter.segment(robot.grid);
+    const auto reference_graph = matcher.segmenter.segment(building.layout);
+    const auto result = matcher.match(robot.grid, map_graph, building.layout, reference_graph);
+    const auto a = areamatch::assess_match(robot.grid, map_graph, building.layout, reference_graph, result, params);
+    const auto reference_raster = areamatch::make_area_raster(reference_graph, params.sample_cell_m);
+    const PairTruth truth = truth_of(robot, map_graph, reference_raster, 15.0);
+    double rigid_med = std::nan(""), rigid_p95 = std::nan(""), warp_med = std::nan(""), warp_p95 = std::nan(""), max_turn = std::nan("");
+    const std::size_t found = a.ok ? a.brokenness.pieces.size() : 0;
+    if (a.ok) {
+      ++placed;
+      std::vector<double> rigid, warped;
+      for (const auto& p : areamatch::detail::wall_points(robot.grid, 0.1)) {
+        const Eigen::Vector2d truth_point = robot.true_dest(p);
+        rigid.push_back((result.T_dest_source * p - truth_point).norm());
+        warped.push_back((a.warp.field.apply(p) - truth_point).norm());
+      }
+      rigid_med = percentile(rigid, 0.5), rigid_p95 = percentile(rigid, 0.95);
+      warp_med = percentile(warped, 0.5), warp_p95 = percentile(warped, 0.95);
+      if (rigid_med >= 0.3) {
+        ++strong;
+        strong_med.push_back(warp_med);
+        strong_p95.push_back(warp_p95);
+        strong_ok += warp_med <= 0.05 && warp_p95 <= 0.15;
+      }
+      // Each found piece's turn against the main one, next to its true piece's against the main's true piece.
+      const auto& pieces = a.brokenness.pieces;
+      auto true_piece = [&](const areamatch::RigidPiece& piece) {
+        std::map<int, double> m2;
+        for (int area : piece.areas) {
+          m2[truth.piece_of_area[static_cast<std::size_t>(area)]] += map_graph.areas[static_cast<std::size_t>(area)].size_m2;
+        }
+        int best = 0;
+        double most = -1.0;
+        for (const auto& [k, v] : m2) {
+          if (v > most) best = k, most = v;
+        }
+        return best;
+      };
+      const int main_truth = true_piece(pieces.front());
+      max_turn = 0.0;
+      for (std::size_t k = 1; k < pieces.size(); ++k) {
+        const double truth_turn = areamatch::wrap_angle(robot.piece_motion(true_piece(pieces[k])).rotation -
+                                                        robot.piece_motion(main_truth).rotation);
+        max_turn = std::max(max_turn, std::abs(areamatch::wrap_angle(pieces[k].rotation_rad - truth_turn)) * 180.0 / pi);
+      }
+      pieces_exact += static_cast<int>(found) == truth.pieces;
+      turns_ok += static_cast<int>(found) == truth.pieces && max_turn <= 0.5;
+      coverage_ok += std::abs(a.coverage.explored_share - truth.coverage) <= 0.02;
+      warp_times.push_back(a.timings.warp_s + a.timings.assess_s);
+      match_times.push_back(result.timings.total_s);
+    }
+    std::printf("%llu\t%.1f\t%d\t%d\t%.3f\t%.3f\t%.3f\t%.3f\t%d\t%zu\t%.2f\t%.3f\t%.3f\t%.3f\t%.3f\n",
+                static_cast<unsigned long long>(seed), rp.wall_bend_m, rp.break_count, a.ok ? 1 : 0, rigid_med, rigid_p95,
+                warp_med, warp_p95, truth.pieces, found, max_turn, truth.coverage, a.ok ? a.coverage.explored_share : std::nan(""),
+                a.timings.warp_s + a.timings.assess_s, result.timings.total_s);
+    std::fflush(stdout);
+  }
+  std::printf("\n%d pairs, %d placed\n", count, placed);
+  std::printf("warp error where the rigid median >= 0.3 m: %d pairs; median of medians %.3f m, median of 95th percentiles %.3f m; "
+              "%d pairs with median <= 0.05 and 95th <= 0.15\n",
+              strong, percentile(strong_med, 0.5), percentile(strong_p95, 0.5), strong_ok);
+  std::printf("broken pieces counted exactly: %d of %d placed; and every piece's turn within 0.5 deg: %d\n", pieces_exact, placed,
+              turns_ok);
+  std::printf("coverage within 2 points of the truth: %d of %d placed\n", coverage_ok, placed);
+  std::printf("median time: match %.3f s, warp + assessment %.3f s\n", percentile(match_times, 0.5), percentile(warp_times, 0.5));
+  return 0;
+}
