@@ -18,6 +18,7 @@ from ._core import (  # noqa: F401
     UNKNOWN,
     Area,
     AreaGraph,
+    Assessment,
     Map,
     Matcher,
     MergeResult,
@@ -26,6 +27,7 @@ from ._core import (  # noqa: F401
     PreparedMap,
     Result,
     __version__,
+    assess,
     load_map,
     match,
     segment,
@@ -75,6 +77,6 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
 
 
 __all__ = [
-    "FREE", "OCCUPIED", "UNKNOWN", "Area", "AreaGraph", "Map", "Matcher", "MergeResult", "Passage", "Picture",
-    "PreparedMap", "Result", "__version__", "load_map", "match", "merge", "ros", "segment", "synthetic",
+    "FREE", "OCCUPIED", "UNKNOWN", "Area", "AreaGraph", "Assessment", "Map", "Matcher", "MergeResult", "Passage", "Picture",
+    "PreparedMap", "Result", "__version__", "assess", "load_map", "match", "merge", "ros", "segment", "synthetic",
 ]

@@ -2,8 +2,8 @@ from typing import Optional, Sequence
 
 from . import ros as ros, synthetic as synthetic
 from ._core import (FREE as FREE, OCCUPIED as OCCUPIED, UNKNOWN as UNKNOWN, Area as Area, AreaGraph as AreaGraph,
-                    Map as Map, Matcher as Matcher, MergeResult as MergeResult, Passage as Passage, Picture as Picture,
-                    PreparedMap as PreparedMap, Result as Result, __version__ as __version__, load_map as load_map,
+                    Assessment as Assessment, Map as Map, Matcher as Matcher, MergeResult as MergeResult, Passage as Passage, Picture as Picture,
+                    PreparedMap as PreparedMap, Result as Result, __version__ as __version__, assess as assess, load_map as load_map,
                     match as match, segment as segment)
 
 def merge(maps: Sequence[Map], *, reference: int = ..., door_width: Optional[float] = ..., allow_reflection: bool = ...,

@@ -114,6 +114,23 @@ def match(source: Map, dest: Map, *, allow_reflection: bool = ..., estimate_scal
           min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
           min_p_correct: Optional[float] = ..., paper: bool = ..., threads: int = ...) -> Result: ...
 
+class Assessment:
+    ok: bool
+    reason: str
+    decision_overridden: bool
+    broken_pieces: int
+    explored_share: float
+    def warp_points(self, pixels: npt.ArrayLike) -> npt.NDArray[np.float64]: ...
+    def to_json(self) -> str: ...
+    def to_dict(self) -> Dict[str, Any]: ...
+    def picture(self, error_scale: float = ...) -> Picture: ...
+
+def assess(map: Map, reference: Map, *, same_building: bool = ..., allow_reflection: bool = ...,
+           door_width: Optional[float] = ..., map_door_width: Optional[float] = ...,
+           reference_door_width: Optional[float] = ..., min_agreement: Optional[float] = ...,
+           min_p_correct: Optional[float] = ..., control_spacing: Optional[float] = ...,
+           bend_length: Optional[float] = ...) -> Assessment: ...
+
 class PreparedMap:
     map: Map
     graph: AreaGraph

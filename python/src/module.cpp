@@ -204,6 +204,13 @@ struct MatchRun {
   }
 };
 
+/// An assessment with the maps and graphs it was made from (for its picture).
+struct AssessRun {
+  am::MapPairRun run;
+  am::MapAssessment assessment;
+};
+
+
 /// A default matcher with options, for prepared maps and merging.
 struct PyMatcher {
   DefaultMatcher matcher;
@@ -586,6 +593,72 @@ PYBIND11_MODULE(_core, m) {
             return am::render_merge(r.result, grids);
           },
           release_gil(), "the picture of `areamatch merge --png`");
+
+  // -------------------------------------------------------------------------------- Assess
+  py::class_<AssessRun>(m, "Assessment", "A map assessed against a reference (docs/assessment.md).")
+      .def_property_readonly("ok", [](const AssessRun& a) { return a.assessment.ok; })
+      .def_property_readonly("reason", [](const AssessRun& a) { return a.assessment.reason; })
+      .def_property_readonly("decision_overridden", [](const AssessRun& a) { return a.assessment.decision_overridden; },
+                             "the match was rejected and assessed all the same (same_building=True)")
+      .def_property_readonly("broken_pieces", [](const AssessRun& a) { return a.assessment.brokenness.broken_pieces(); })
+      .def_property_readonly("explored_share", [](const AssessRun& a) { return a.assessment.coverage.explored_share; },
+                             "share of the reference's rooms and corridors the map explored")
+      .def("warp_points",
+           [](const AssessRun& a, const Eigen::Matrix<double, Eigen::Dynamic, 2>& pixels) {
+             if (!a.assessment.ok) throw am::parameter_error("the map was not placed: " + a.assessment.reason);
+             const Eigen::Affine2d to_world = a.run.source.world_from_pixel(), to_pixel = a.run.dest.pixel_from_world();
+             Eigen::Matrix<double, Eigen::Dynamic, 2> out(pixels.rows(), 2);
+             for (Eigen::Index i = 0; i < pixels.rows(); ++i) {
+               out.row(i) = (to_pixel * a.assessment.warp.field.apply(to_world * Eigen::Vector2d(pixels.row(i).transpose()))).transpose();
+             }
+             return out;
+           },
+           py::arg("pixels"), "map pixels (n x 2: col, row) to reference pixels through the warp, as `areamatch warp --points`")
+      .def("to_json", [](const AssessRun& a) { return am::assessment_json(a.assessment); },
+           "the JSON text of `areamatch assess --json`")
+      .def("to_dict", [](const AssessRun& a) { return json_loads(am::assessment_json(a.assessment)); })
+      .def(
+          "picture",
+          [](const AssessRun& a, double error_scale) {
+            am::detail::require_positive(error_scale, "error_scale");
+            return am::render_assessment(a.run.source, a.run.source_graph, a.run.dest, a.assessment, error_scale);
+          },
+          py::arg("error_scale") = 0.5, release_gil(), "the picture of `areamatch assess --png`")
+      .def("__repr__", [](const AssessRun& a) {
+        const auto& r = a.assessment;
+        if (!r.ok) return std::string("<areamatch.Assessment not placed>");
+        return "<areamatch.Assessment walls " +
+               am::detail::format_double(std::round(r.rigid_walls.map_to_reference.median_m * 1000.0) / 1000.0) +
+               " m off (median), " + std::to_string(r.brokenness.broken_pieces()) + " broken pieces, explored " +
+               am::detail::format_double(std::round(r.coverage.explored_share * 1000.0) / 10.0) + " %>";
+      });
+
+  m.def(
+      "assess",
+      [](const am::OccupancyGrid& map, const am::OccupancyGrid& reference, bool same_building, bool allow_reflection,
+         std::optional<double> door_width, std::optional<double> map_door_width, std::optional<double> reference_door_width,
+         std::optional<double> min_agreement, std::optional<double> min_p_correct, std::optional<double> control_spacing,
+         std::optional<double> bend_length) {
+        const auto options = pair_options(door_width, map_door_width, reference_door_width, allow_reflection, false, std::nullopt,
+                                           std::nullopt, min_agreement, std::nullopt, std::nullopt, min_p_correct, false, 1);
+        am::AssessParams params;
+        params.assume_same_building = same_building;
+        if (control_spacing) params.warp.control_spacing_m = *control_spacing;
+        if (bend_length) params.warp.bend_length_m = *bend_length;
+        params.validate();
+        AssessRun out{am::match_grids(map, reference, options), {}};
+        out.assessment = am::assess_match(out.run.source, out.run.source_graph, out.run.dest, out.run.dest_graph, out.run.result, params);
+        out.assessment.timings.match_s = out.run.result.timings.total_s;
+        out.assessment.timings.total_s += out.run.result.timings.total_s;
+        return out;
+      },
+      py::arg("map"), py::arg("reference"), py::kw_only(), py::arg("same_building") = false, py::arg("allow_reflection") = false,
+      py::arg("door_width") = py::none(), py::arg("map_door_width") = py::none(), py::arg("reference_door_width") = py::none(),
+      py::arg("min_agreement") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("control_spacing") = py::none(),
+      py::arg("bend_length") = py::none(), release_gil(),
+      "Assesses map against reference as `areamatch assess` (same options, same numbers): wall error both ways, the warp's "
+      "displacement, broken pieces, coverage, topology. A map that cannot be placed gives ok False with the reason, unless "
+      "same_building.");
 
   // ------------------------------------------------------------------------------ Synthetic
   auto synthetic = m.def_submodule("_synthetic", "synthetic buildings and robot maps (areamatch.synthetic)");
