@@ -22,7 +22,7 @@ class WarpField {
   /// A field of `columns` × `rows` nodes `spacing_m` apart from `origin` (source world), every
   /// displacement zero: the rigid transform alone.
   WarpField(const Similarity2& rigid, const Eigen::Vector2d& origin, double spacing_m, int columns, int rows)
-      : rigid_(rigid), origin_(origin), spacing_(spacing_m), columns_(std::max(columns, 2)), rows_(std::max(rows, 2)),
+      : rigid_(rigid), rigid_linear_(rigid.linear()), origin_(origin), spacing_(spacing_m), columns_(std::max(columns, 2)), rows_(std::max(rows, 2)),
         displacement_(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_), Eigen::Vector2d::Zero()) {}
 
   /// The rigid part: source world → destination world.
@@ -69,8 +69,13 @@ class WarpField {
     return d;
   }
 
+  /// The rigid part alone at a source point (its matrix kept: no sine and cosine per point).
+  Eigen::Vector2d apply_rigid(const Eigen::Vector2d& source_world) const {
+    return rigid_linear_ * source_world + rigid_.translation;
+  }
+
   /// Source world → destination world.
-  Eigen::Vector2d apply(const Eigen::Vector2d& source_world) const { return rigid_ * source_world + displacement(source_world); }
+  Eigen::Vector2d apply(const Eigen::Vector2d& source_world) const { return apply_rigid(source_world) + displacement(source_world); }
 
   /// Destination world → source world: the point the warp takes to `dest_world`, by fixed-point
   /// iteration x ← T⁻¹(y − d(x)) (which converges while the displacement bends less than the
@@ -89,6 +94,7 @@ class WarpField {
 
  private:
   Similarity2 rigid_;
+  Eigen::Matrix2d rigid_linear_ = Eigen::Matrix2d::Identity();
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double spacing_ = 1.0;
   int columns_ = 2, rows_ = 2;

@@ -9,9 +9,9 @@
 ///
 ///   Σ over source wall points  w · ((n · r)² + along_wall_weight · |r|²)      (walls onto walls)
 ///   + κ · ∫ |∂²d/∂x²|² + 2 |∂²d/∂x∂y|² + |∂²d/∂y²|² dA                        (smooth bending)
-///   + rest_weight · ∫ |d|² dA                                                 (rest where nothing is seen)
+///   + rest_weight · ∫ |d − d₀|² dA                                            (rest where nothing is seen)
 ///
-/// over the control grid's displacements d, where r is the warped source point less the
+/// over the control grid's displacements d (d₀: where they start, none unless `WarpStart` says), where r is the warped source point less the
 /// destination wall point paired with it, n that wall's normal (point-to-line: walls slide along
 /// each other), w the wall length per point, κ from `WarpParams::bend_length_m`. The bending
 /// term does not resist a rigid or affine motion, only bends. For fixed pairs the energy is
@@ -178,30 +178,39 @@ inline std::vector<WarpPair> warp_pairs(const WarpField& field, const std::vecto
 }
 
 /// The warp's linear system across the solves of one fit: the smoothness part (the same for
-/// every solve) and the last factorization. The first solve of each gate factorizes its system
-/// (sparse LDLT); the solves after it change the pairs only a little, so they are solved by
-/// conjugate gradients preconditioned with that factorization, from the current displacements —
-/// a few triangular solves instead of a factorization each (the factorization is most of a
-/// warp's time). Deterministic: one thread, fixed order.
+/// every solve) and the last factorization. The first solve factorizes its system (sparse LDLT);
+/// the solves after it differ in their pairs only (fewer, nearer, as the gates shrink), so they
+/// are solved by conjugate gradients preconditioned with that factorization, from the current
+/// displacements — a few triangular solves instead of a factorization each (a factorization costs
+/// as much as a warp's other work). Deterministic: one thread, fixed order.
 class WarpSystem {
  public:
+  /// The rest term pulls each node towards its displacement in `field` now (where the warp
+  /// starts), not towards none: a piece that the start turned away from the rigid transform stays
+  /// turned where no wall holds it (room middles), rather than bending back.
   WarpSystem(const WarpField& field, const WarpParams& params, const std::vector<int>& node_piece = {})
-      : unknowns_(static_cast<Eigen::Index>(2 * field.node_count())) {
+      : unknowns_(static_cast<Eigen::Index>(2 * field.node_count())), rest_pull_(unknowns_) {
     const auto triplets = smoothness_terms(field, params, node_piece);
     smoothness_.resize(unknowns_, unknowns_);
     smoothness_.setFromTriplets(triplets.begin(), triplets.end());
+    const double rest = params.rest_weight * field.spacing() * field.spacing();
+    for (std::size_t k = 0; k < field.node_count(); ++k) {
+      rest_pull_.segment<2>(static_cast<Eigen::Index>(2 * k)) = rest * field.node_displacement(k);
+    }
   }
 
   /// Solves for the displacements that lay `pairs` best under the smoothness terms and writes
-  /// them into `field`; `refactor` factorizes this system first (else the last factorization
-  /// preconditions it). Returns false when it could not be solved (the field is kept).
+  /// them into `field`: by conjugate gradients preconditioned with the last factorization, or by
+  /// factorizing this system (the first solve, or when that did not converge). Returns false when
+  /// it could not be solved (the field is kept).
   bool solve(WarpField& field, const std::vector<WarpPair>& pairs, const std::vector<Eigen::Vector2d>& points,
-             const BoundaryLookup& dest, const WarpParams& params, bool refactor) {
+             const BoundaryLookup& dest, const WarpParams& params) {
     Eigen::VectorXd b;
     const Eigen::SparseMatrix<double> A = smoothness_ + data_terms(field, pairs, points, dest, params, b);
+    b += rest_pull_;
     Eigen::VectorXd x(unknowns_);
     for (std::size_t k = 0; k < field.node_count(); ++k) x.segment<2>(static_cast<Eigen::Index>(2 * k)) = field.node_displacement(k);
-    if (!(factored_ && !refactor && preconditioned_cg(A, b, x))) {
+    if (!(factored_ && preconditioned_cg(A, b, x))) {
       factor_.compute(A);
       factored_ = factor_.info() == Eigen::Success;
       if (!factored_) return false;
@@ -233,7 +242,7 @@ class WarpSystem {
       auto& block = blocks[cell];
       if (!used[cell]) block.fill(0.0);
       used[cell] = 1;
-      const Eigen::Vector2d r0 = field.rigid() * p - *pair.to;
+      const Eigen::Vector2d r0 = field.apply_rigid(p) - *pair.to;
       const Eigen::Vector2d& normal = dest.normal_at(pair.to);
       // Rows of the residuals in the cell's eight unknowns (node k, component c at 2k + c).
       auto add_row = [&](const Eigen::Vector2d& direction, double residual, double weight) {
@@ -276,9 +285,9 @@ class WarpSystem {
   }
 
   /// Conjugate gradients on A x = b from `x`, preconditioned by the last factorization; true when
-  /// the residual fell below 1e-6 of b's within 40 steps (`x` is then the solution).
+  /// the residual fell below 1e-4 of b's within 40 steps (displacements to well under a millimetre) (`x` is then the solution).
   bool preconditioned_cg(const Eigen::SparseMatrix<double>& A, const Eigen::VectorXd& b, Eigen::VectorXd& x) const {
-    const double goal = 1e-6 * b.norm();
+    const double goal = 1e-4 * b.norm();
     Eigen::VectorXd r = b - A.selfadjointView<Eigen::Lower>() * x;
     if (r.norm() <= goal) return true;
     Eigen::VectorXd z = factor_.solve(r);
@@ -302,6 +311,7 @@ class WarpSystem {
 
   Eigen::Index unknowns_;
   Eigen::SparseMatrix<double> smoothness_;
+  Eigen::VectorXd rest_pull_;  ///< the rest term's right-hand side: rest weight × starting displacement
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
   bool factored_ = false;
 };
@@ -368,7 +378,7 @@ inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& des
     for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
       const auto pairs = detail::warp_pairs(out.field, points, sides, lookup, gate, params.keep_fraction);
       if (pairs.size() < min_pairs) break;
-      if (!system.solve(out.field, pairs, points, lookup, params, iteration == 0)) break;
+      if (!system.solve(out.field, pairs, points, lookup, params)) break;
       out.paired_points = pairs.size();
     }
   }

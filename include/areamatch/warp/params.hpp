@@ -39,8 +39,9 @@ struct WarpParams {
   /// across it (point to line): small, so that walls may slide along each other, but not zero,
   /// so that a corridor's length is held.
   double along_wall_weight = 0.1;
-  /// Pull of each node's displacement towards none (towards the rigid transform), per m² of the
-  /// grid: keeps nodes that no wall reaches where the rigid transform put them.
+  /// Pull of each node's displacement towards where it started (none: the rigid transform, unless
+  /// a `WarpStart` gives one), per m² of the grid: keeps nodes that no wall reaches where the
+  /// start put them.
   double rest_weight = 1e-3;
   /// The control grid reaches this far beyond the source's walls.
   double margin_m = 2.0;
