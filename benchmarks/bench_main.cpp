@@ -8,6 +8,7 @@ int main(int argc, char** argv) {
   areamatch_bench::register_segmentation();
   areamatch_bench::register_matching();
   areamatch_bench::register_merge();
+  areamatch_bench::register_assessing();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

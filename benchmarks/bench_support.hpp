@@ -12,6 +12,7 @@ namespace areamatch_bench {
 void register_segmentation();  // bench_segmentation.cpp: segment/, voronoi/, voronoi_boost/
 void register_matching();      // bench_matching.cpp: match/, pair/, onto_prepared/
 void register_merge();         // bench_merge.cpp: merge/
+void register_assessing();     // bench_assess.cpp: warp/, assess/
 // bench_io_synthetic.cpp registers its BM_ benchmarks statically (BENCHMARK macros).
 
 /// Builds its value the first time it is asked for it.
