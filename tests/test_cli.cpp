@@ -605,6 +605,14 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
   const Run text = run("merge " + maps + " --reference " + dir + "/a/robot.yaml");
   CHECK(text.status == 0);
   CHECK(text.out.find("placed 2 of 2 maps in the frame of " + dir + "/a/robot.yaml") != std::string::npos);
+  CHECK(text.out.find(" doubled (") != std::string::npos);
+  CHECK(json.out.find("\"doubled_wall_cells\"") != std::string::npos);
+  // --non-rigid: the robot map bent onto the layout, its warp's figures in the JSON.
+  const Run bent = run("merge " + maps + " --json --non-rigid --bend-length 5 --png " + dir + "/bent.png", false);
+  CHECK(bent.status == 0);
+  for (const char* key : {"\"warp\": {", "\"warped_median_m\"", "\"warp_s\""}) CHECK_MESSAGE(bent.out.find(key) != std::string::npos, key);
+  const Run bent_text = run("merge " + maps + " --non-rigid");
+  CHECK(bent_text.out.find("; warp: walls ") != std::string::npos);
 
   // Maps of different buildings only: listed as not placed, exit 1.
   const Run strangers = run("merge " + dir + "/a/layout.yaml " + dir + "/b/robot.yaml");
@@ -624,6 +632,8 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
            {maps + " --wall-share 2", "--wall-share must be in (0, 1]"},
            {maps + " --gate-max-lower-walls -1", "--gate-max-lower-walls must not be negative"},
            {maps + " --out " + dir + "/merged.pgm", "must name a .yaml file"},
+           {maps + " --bend-length 3", "give --non-rigid too"},
+           {maps + " --non-rigid --control-spacing 0", "--control-spacing"},
            {maps + " " + dir + "/missing.yaml", "missing.yaml"}}) {
     const std::string& arguments = bad_input.first;  // not a structured binding: the checks' lambdas capture it
     const std::string& message = bad_input.second;

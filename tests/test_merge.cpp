@@ -360,3 +360,102 @@ TEST_CASE("merge_maps until_connected: fewer matches, measured against all pairs
   CHECK(all_right >= 0.85 * buildings);
   CHECK(maps_wrong <= 0.02 * n * buildings);
 }
+
+namespace {
+
+/// A free room with walls drawn as occupied columns at the given metres from its left edge (each
+/// a cell wide, full height), the rest free; 0.05 m cells.
+OccupancyGrid room_with_walls(const std::vector<double>& walls_m) {
+  OccupancyGrid grid(120, 60, 0.05);
+  for (int row = 0; row < grid.height(); ++row) {
+    for (int col = 0; col < grid.width(); ++col) grid.set(col, row, CellState::free);
+  }
+  for (const double x : walls_m) {
+    const int col = static_cast<int>(std::lround(x / 0.05));
+    for (int row = 0; row < grid.height(); ++row) grid.set(col, row, CellState::occupied);
+  }
+  return grid;
+}
+
+}  // namespace
+
+TEST_CASE("count_double_walls: a wall 0.1-0.4 m beside a parallel wall across free space is doubled, a corridor is not") {
+  const DoubleWalls single = count_double_walls(room_with_walls({2.0}));
+  CHECK(single.wall_cells == 60);
+  CHECK(single.doubled_cells == 0);
+  const DoubleWalls doubled = count_double_walls(room_with_walls({2.0, 2.25}));  // 0.2 m of free space between
+  CHECK(doubled.wall_cells == 120);
+  CHECK(doubled.doubled_cells == 120);
+  CHECK(doubled.share() == doctest::Approx(1.0));
+  CHECK(doubled.doubled.size() == 120);
+  CHECK(count_double_walls(room_with_walls({2.0, 3.0})).doubled_cells == 0);   // a 0.95 m corridor
+  CHECK(count_double_walls(room_with_walls({2.0, 2.05})).doubled_cells == 0);  // one thick wall
+  CHECK(count_double_walls(room_with_walls({2.0, 2.1})).doubled_cells == 0);   // one cell between: rasterisation
+  // A perpendicular wall across the look is not a parallel one.
+  OccupancyGrid corner = room_with_walls({2.0});
+  for (int col = 41; col < 100; ++col) corner.set(col, 30, CellState::occupied);
+  const DoubleWalls cornered = count_double_walls(corner);
+  CHECK(cornered.doubled_cells == 0);
+  // Unknown between the walls ends the look.
+  OccupancyGrid behind = room_with_walls({2.0, 2.25});
+  for (int row = 0; row < behind.height(); ++row) {
+    for (int col = 41; col < 45; ++col) behind.set(col, row, CellState::unknown);
+  }
+  CHECK(count_double_walls(behind).doubled_cells == 0);
+  DoubleWallParams bad;
+  bad.min_gap_m = 0.5;
+  CHECK_THROWS_AS(count_double_walls(room_with_walls({2.0}), bad), parameter_error);
+}
+
+TEST_CASE("merge_maps non_rigid: bent maps bent onto the layout leave fewer doubled walls than their rigid poses") {
+  const bool quick = areamatch_test::quick_tests();
+  const Matcher<> matcher;
+  std::size_t rigid_doubled = 0, warped_doubled = 0;
+  for (std::uint64_t seed : quick ? std::vector<std::uint64_t>{7} : std::vector<std::uint64_t>{7, 8, 9}) {
+    areamatch::BuildingParams b;
+    b.width_m = 30.0;
+    b.height_m = 20.0;
+    const SyntheticBuilding building = generate_building(b, seed);
+    std::vector<Matcher<>::PreparedMap> maps{matcher.prepare(building.layout)};
+    for (int i = 0; i < 2; ++i) {
+      RobotMapParams r;
+      r.rotation_rad = 0.4 + i;
+      r.wall_bend_m = 0.4;
+      r.explored_fraction = 0.8;
+      maps.push_back(matcher.prepare(make_robot_map(building, r, seed * 10 + static_cast<std::uint64_t>(i)).grid));
+    }
+    MergeParams params;  // the layout (map 0) is the reference
+    const MergeResult rigid = merge_maps(matcher, maps, params);
+    params.non_rigid = true;
+    const MergeResult warped = merge_maps(matcher, maps, params);
+    REQUIRE(rigid.ok);
+    REQUIRE(warped.ok);
+    CHECK_FALSE(rigid.maps[1].warp.has_value());
+    CHECK_FALSE(warped.maps[0].warp.has_value());  // the reference is not warped
+    for (std::size_t m = 1; m < maps.size(); ++m) {
+      REQUIRE(warped.maps[m].warp.has_value());
+      const WarpResult& w = *warped.maps[m].warp;
+      MESSAGE("seed " << seed << " map " << m << ": walls " << w.rigid_median_m << " -> " << w.warped_median_m << " m off the layout's");
+      CHECK(w.warped_median_m < w.rigid_median_m);
+      // Same poses: the warp only bends what the pose fit placed.
+      CHECK(warped.maps[m].T_reference_map.translation == rigid.maps[m].T_reference_map.translation);
+    }
+    MESSAGE("seed " << seed << ": doubled wall cells " << rigid.double_walls.doubled_cells << " rigid, "
+                    << warped.double_walls.doubled_cells << " non-rigid (of " << rigid.double_walls.wall_cells << ", "
+                    << warped.double_walls.wall_cells << ")");
+    rigid_doubled += rigid.double_walls.doubled_cells;
+    warped_doubled += warped.double_walls.doubled_cells;
+    CHECK(warped.timings.warp_s > 0.0);
+    // Deterministic, on any thread count.
+    params.threads = 3;
+    const MergeResult threaded = merge_maps(matcher, maps, params);
+    CHECK(threaded.merged == warped.merged);
+    CHECK(threaded.double_walls.doubled_cells == warped.double_walls.doubled_cells);
+  }
+  CHECK(warped_doubled < rigid_doubled);
+  MergeParams bad;
+  bad.non_rigid = true;
+  bad.warp.control_spacing_m = 0.0;
+  const std::vector<Matcher<>::PreparedMap> two{matcher.prepare(room_with_walls({2.0})), matcher.prepare(room_with_walls({2.0}))};
+  CHECK_THROWS_AS(merge_maps(matcher, two, bad), parameter_error);
+}

@@ -915,6 +915,11 @@ const char* kMergeHelp =
     "                       checks; default: every pair)\n"
     "  --no-same-side       use the accepted matches' transforms as they are (default: each refined by\n"
     "                       ICP that pairs walls only with walls facing the same way)\n"
+    "  --non-rigid          bend each map onto the reference's walls before fusing (as `areamatch warp`),\n"
+    "                       so that maps that bend differently do not leave walls side by side; parts the\n"
+    "                       reference did not see stay rigid: make the reference the fullest map or plan\n"
+    "  --control-spacing M  with --non-rigid: the warps' control grid spacing, metres (default 1)\n"
+    "  --bend-length M      with --non-rigid: the shortest bend a warp follows, metres (default 4)\n"
     "  --threads N          match N pairs at once (default 2; 0: one per core); same results for any N\n"
     "  --min-agreement A    accept a match when the maps agree at least A (default 0.835) ...\n"
     "  --gate-max-lower-walls W  ... and the lower of the two wall agreements is at most W (default 0.7;\n"
@@ -924,9 +929,9 @@ const char* kMergeHelp =
     "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
 
 int run_merge(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "help"},
+  const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "non-rigid", "help"},
                   {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
-                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads"});
+                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads", "control-spacing", "bend-length"});
   if (args.flag("help")) {
     std::cout << kMergeHelp;
     return 0;
@@ -958,6 +963,12 @@ int run_merge(const std::vector<std::string>& tokens) {
   if (const auto residual = args.number("max-residual", true)) merge_params.max_residual_m = *residual;
   if (args.flag("until-connected")) merge_params.strategy = areamatch::MergeStrategy::until_connected;
   merge_params.refine_same_side = !args.flag("no-same-side");
+  merge_params.non_rigid = args.flag("non-rigid");
+  if (!merge_params.non_rigid && (args.text("control-spacing") || args.text("bend-length"))) {
+    throw UsageError("--control-spacing and --bend-length shape the warps of --non-rigid; give --non-rigid too");
+  }
+  if (const auto v = args.number("control-spacing", true)) merge_params.warp.control_spacing_m = *v;
+  if (const auto v = args.number("bend-length", true)) merge_params.warp.bend_length_m = *v;
   merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
   // The matcher's options as `areamatch match` sets them (its threads stay 1: merging spreads pairs).
   areamatch::MapPairOptions match_options;
@@ -1005,15 +1016,28 @@ int run_merge(const std::vector<std::string>& tokens) {
     std::cout << "placed " << placed << " of " << paths.size() << " maps in the frame of " << paths[result.reference] << " ("
               << result.edges.size() << " matches, " << accepted << " accepted, " << used << " used), "
               << format_fixed(1000.0 * total_s, 0) << " ms (prepare " << format_fixed(1000.0 * seconds(loaded, prepared), 0)
-              << ", match " << format_fixed(1000.0 * result.timings.matching_s, 0) << ", fuse "
+              << ", match " << format_fixed(1000.0 * result.timings.matching_s, 0)
+              << (merge_params.non_rigid ? ", warp " + format_fixed(1000.0 * result.timings.warp_s, 0) : std::string()) << ", fuse "
               << format_fixed(1000.0 * result.timings.fuse_s, 0) << ")\n";
+    if (!result.merged.empty()) {
+      std::cout << "  merged map: " << result.merged.width() << " x " << result.merged.height() << " cells, "
+                << result.double_walls.wall_cells << " wall cells, " << result.double_walls.doubled_cells << " doubled ("
+                << format_fixed(100.0 * result.double_walls.share(), 1) << " %: a parallel wall "
+                << format_fixed(merge_params.double_walls.min_gap_m, 2) << "-" << format_fixed(merge_params.double_walls.max_gap_m, 2)
+                << " m away across free space)\n";
+    }
     for (std::size_t i = 0; i < paths.size(); ++i) {
       const auto& m = result.maps[i];
       if (!m.placed) continue;
       const auto& T = m.T_reference_map;
       std::cout << "  " << paths[i] << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2) << " deg, translation ("
                 << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3) << ") m"
-                << (T.reflected ? ", reflected" : "") << ", residual " << format_fixed(m.residual_m, 3) << " m\n";
+                << (T.reflected ? ", reflected" : "") << ", residual " << format_fixed(m.residual_m, 3) << " m";
+      if (m.warp) {
+        std::cout << "; warp: walls " << format_fixed(m.warp->rigid_median_m, 3) << " -> " << format_fixed(m.warp->warped_median_m, 3)
+                  << " m median off the reference's, moved up to " << format_fixed(m.warp->max_displacement_m, 2) << " m";
+      }
+      std::cout << "\n";
     }
     for (const auto& e : result.edges) {
       if (e.match.ok && !e.used) std::cout << "  dropped " << paths[e.source] << " -> " << paths[e.dest] << ": " << e.note << "\n";

@@ -25,7 +25,12 @@
 ///     stronger edges'. Dropped edges are reported, not hidden.
 ///  3. **Unplaced maps**: a map joined to the reference by no edge is reported with the reason of
 ///     its best failed match — never dropped silently.
-///  4. **The merged map** (merge/fuse.hpp) in the reference map's world frame.
+///  4. **Warps** (`MergeParams::non_rigid`): each placed map is bent onto the reference map's walls
+///     (warp/fit.hpp) from its fitted pose, so that maps that bend differently lay their walls on
+///     one line instead of side by side (merge/double_walls.hpp counts what is left doubled).
+///     Parts of a map the reference did not see stay where its pose puts them: choose as the
+///     reference the map that covers the building best (a floor plan, the fullest map).
+///  5. **The merged map** (merge/fuse.hpp) in the reference map's world frame.
 
 #include "detail/format.hpp"
 #include "detail/parallel.hpp"
@@ -37,9 +42,11 @@
 #include "match/params.hpp"
 #include "match/refine.hpp"
 #include "match/result.hpp"
+#include "merge/double_walls.hpp"
 #include "merge/fuse.hpp"
 #include "merge/pose_graph.hpp"
 #include "transform.hpp"
+#include "warp/fit.hpp"
 
 #include <Eigen/Core>
 
@@ -48,6 +55,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -89,6 +97,13 @@ struct MergeParams {
   /// partial map entered a room the other did not, that room's side of a wall is pulled onto the
   /// other side: N = 2 generated merges placed maps up to 0.13 m off (0.013 m with this).
   bool refine_same_side = true;
+  /// Bend each placed map onto the reference's walls before fusing (step 4 of the file comment);
+  /// false: each map is laid by its rigid pose alone.
+  bool non_rigid = false;
+  /// The warps' settings (`non_rigid`).
+  WarpParams warp;
+  /// How the merged map's doubled walls are counted (`MergeResult::double_walls`).
+  DoubleWallParams double_walls;
   /// Build the merged grid (false: poses only).
   bool build_merged_map = true;
   /// The maps' names in messages (e.g. their paths); "map i" when empty.
@@ -106,6 +121,8 @@ struct MergeParams {
     }
     if (!names.empty() && names.size() != map_count) throw parameter_error("MergeParams::names: one name per map, or none");
     fuse.validate();
+    if (non_rigid) warp.validate();
+    double_walls.validate();
   }
   std::string name(std::size_t i) const { return names.empty() ? "map " + std::to_string(i) : names[i]; }
 };
@@ -136,6 +153,10 @@ struct MergedMap {
   /// RMS of the residuals of the used edges that touch it (0 when only tree edges place it, NaN
   /// when not placed).
   double residual_m = std::numeric_limits<double>::quiet_NaN();
+  /// With `MergeParams::non_rigid`: the warp that lays this map on the reference (its rigid part
+  /// is `T_reference_map`) and how well it lays the walls; none for the reference, a map not
+  /// placed, or a rigid merge.
+  std::optional<WarpResult> warp;
 };
 
 /// Wall-clock seconds per step.
@@ -143,6 +164,7 @@ struct MergeTimings {
   double matching_s = 0.0;
   double refine_s = 0.0;  ///< `MergeParams::refine_same_side`
   double fit_s = 0.0;
+  double warp_s = 0.0;  ///< `MergeParams::non_rigid`
   double fuse_s = 0.0;
   double total_s = 0.0;
 };
@@ -155,6 +177,9 @@ struct MergeResult {
   /// The fused map in the reference's world frame (empty when not built or nothing placed but the
   /// reference; see merge/fuse.hpp).
   OccupancyGrid merged;
+  /// The merged map's walls and how many of them are doubled (merge/double_walls.hpp): what a
+  /// non-rigid merge should leave fewer of.
+  DoubleWalls double_walls;
   MergeTimings timings;
 };
 
@@ -398,22 +423,38 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   result.ok = std::all_of(result.maps.begin(), result.maps.end(), [](const MergedMap& m) { return m.placed; });
   const auto fitted = std::chrono::steady_clock::now();
 
-  // 4. The merged grid of the placed maps.
+  // 4. Each placed map bent onto the reference's walls, each on its own (any thread count gives
+  //    the same warps).
+  if (params.non_rigid) {
+    detail::for_each_index(n, params.threads, [&](std::size_t m) {
+      if (m == params.reference || !result.maps[m].placed) return;
+      result.maps[m].warp = fit_warp(maps[m].grid(), reference_grid, result.maps[m].T_reference_map, params.warp);
+    });
+  }
+  const auto warped = std::chrono::steady_clock::now();
+
+  // 5. The merged grid of the placed maps.
   if (params.build_merged_map) {
     std::vector<const OccupancyGrid*> grids;
     std::vector<Similarity2> poses;
+    std::vector<WarpField> warps;
     for (std::size_t m = 0; m < n; ++m) {
       if (!result.maps[m].placed) continue;
       grids.push_back(&maps[m].grid());
       poses.push_back(result.maps[m].T_reference_map);
+      if (params.non_rigid) {
+        warps.push_back(result.maps[m].warp ? result.maps[m].warp->field : WarpField(result.maps[m].T_reference_map));
+      }
     }
-    result.merged = fuse_maps(grids, poses, params.fuse);
+    result.merged = params.non_rigid ? fuse_warped_maps(grids, warps, params.fuse) : fuse_maps(grids, poses, params.fuse);
+    result.double_walls = count_double_walls(result.merged, params.double_walls);
   }
   const auto end = std::chrono::steady_clock::now();
   result.timings.matching_s = detail::seconds_between(start, matched);
   result.timings.refine_s = refine ? detail::seconds_between(matched, refined) : 0.0;
   result.timings.fit_s = detail::seconds_between(refined, fitted);
-  result.timings.fuse_s = detail::seconds_between(fitted, end);
+  result.timings.warp_s = detail::seconds_between(fitted, warped);
+  result.timings.fuse_s = detail::seconds_between(warped, end);
   result.timings.total_s = detail::seconds_between(start, end);
   return result;
 }

@@ -51,22 +51,46 @@ inline bool touches_free(const OccupancyGrid& grid, int col, int row) {
   return false;
 }
 
-/// Draws `source`'s walls (occupied cells next to free space) onto a picture of `dest` after
-/// `T_dest_source` (world frames). Each destination pixel looks up the source cell under it, so
-/// the overlay has no holes whatever the scale.
-inline void draw_source_walls(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source,
-                              const Similarity2& T_dest_source, const Rgb& color) {
-  const Eigen::Affine2d source_from_dest =
-      source.pixel_from_world() * T_dest_source.affine().inverse() * dest.world_from_pixel();
+namespace detail {
+
+/// Draws `source`'s walls (occupied cells next to free space) onto a picture of `dest`:
+/// `source_pixel(col, row)` is the source pixel under destination pixel (col, row). Each
+/// destination pixel looks up the source cell under it, so the overlay has no holes whatever the
+/// scale.
+template <class SourcePixel>
+void draw_walls_under(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source, const SourcePixel& source_pixel,
+                      const Rgb& color) {
   for (int row = 0; row < dest.height(); ++row) {
     for (int col = 0; col < dest.width(); ++col) {
-      const Eigen::Vector2d p = source_from_dest * Eigen::Vector2d(col, row);
+      const Eigen::Vector2d p = source_pixel(col, row);
       const int sc = static_cast<int>(std::floor(p.x() + 0.5)), sr = static_cast<int>(std::floor(p.y() + 0.5));
       if (source.contains(sc, sr) && source.at(sc, sr) == CellState::occupied && touches_free(source, sc, sr)) {
         image.set(col, row, color[0], color[1], color[2]);
       }
     }
   }
+}
+
+}  // namespace detail
+
+/// Draws `source`'s walls (occupied cells next to free space) onto a picture of `dest` after
+/// `T_dest_source` (world frames).
+inline void draw_source_walls(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source,
+                              const Similarity2& T_dest_source, const Rgb& color) {
+  const Eigen::Affine2d source_from_dest =
+      source.pixel_from_world() * T_dest_source.affine().inverse() * dest.world_from_pixel();
+  detail::draw_walls_under(image, dest, source, [&](int col, int row) { return Eigen::Vector2d(source_from_dest * Eigen::Vector2d(col, row)); },
+                           color);
+}
+
+/// Draws `source`'s walls onto a picture of `dest` through a warp (source world → dest world),
+/// read as a merge reads a warped map (`FuseParams::warp_lattice_m`).
+inline void draw_source_walls(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source, const WarpField& warp,
+                              const Rgb& color) {
+  const FuseParams reading;
+  const detail::WarpedPixels pixels(source, warp, dest,
+                                    detail::warped_outline(detail::known_corners(source), warp, reading.warp_lattice_m), reading.warp_lattice_m);
+  detail::draw_walls_under(image, dest, source, [&](int col, int row) { return pixels.at(col, row); }, color);
 }
 
 /// The destination map with the source map's walls drawn over it after `T_dest_source`.
@@ -251,9 +275,10 @@ inline RgbImage render_merge(const MergeResult& result, const std::vector<const 
                              const MapColors& colors = {}) {
   RgbImage image = render_grid(result.merged, colors);
   for (std::size_t m = 0; m < maps.size() && m < result.maps.size(); ++m) {
-    if (result.maps[m].placed) {
-      draw_source_walls(image, result.merged, *maps[m], result.maps[m].T_reference_map, area_color(static_cast<int>(m)));
-    }
+    if (!result.maps[m].placed) continue;
+    const Rgb color = area_color(static_cast<int>(m));
+    if (result.maps[m].warp) draw_source_walls(image, result.merged, *maps[m], result.maps[m].warp->field, color);
+    else draw_source_walls(image, result.merged, *maps[m], result.maps[m].T_reference_map, color);
   }
   return image;
 }

@@ -53,15 +53,17 @@ MergeResult.timings = _from_dict("timings", "Seconds per step (dict).")
 
 def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None,
           gate_max_lower_walls=None, gate_min_overlap_m2=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0,
-          until_connected=False, same_side=True, threads=1, names=None, build_merged_map=True):
+          until_connected=False, same_side=True, threads=1, names=None, build_merged_map=True, non_rigid=False,
+          control_spacing=None, bend_length=None):
     """Places several maps of one building in the frame of maps[reference] and fuses them.
 
     As `areamatch merge`: every pair matched (or only until connected), the poses fitted to the
     accepted matches, contradicted matches dropped, unplaced maps reported with a reason.
     `maps`: Map objects, prepared here `threads` at a time (maps prepared already: Matcher.merge).
     `same_side`: refine each accepted match by ICP that pairs walls only with walls facing the
-    same way (MergeParams::refine_same_side). Returns a MergeResult; `names` label the maps in its
-    JSON (default "map i").
+    same way (MergeParams::refine_same_side). `non_rigid`: bend each map onto the reference's walls
+    before fusing (`areamatch merge --non-rigid`; `control_spacing`, `bend_length` in metres shape
+    the warps). Returns a MergeResult; `names` label the maps in its JSON (default "map i").
     """
     maps = list(maps)
     if not all(isinstance(m, Map) for m in maps):
@@ -73,7 +75,8 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
     return matcher.merge(maps, reference=reference, resolution=resolution, wall_share=wall_share,
                          max_residual=max_residual, until_connected=until_connected, same_side=same_side,
                          threads=threads,
-                         names=list(names or []), build_merged_map=build_merged_map)
+                         names=list(names or []), build_merged_map=build_merged_map, non_rigid=non_rigid,
+                         control_spacing=control_spacing, bend_length=bend_length)
 
 
 __all__ = [

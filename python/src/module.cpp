@@ -241,8 +241,15 @@ MatchRun match_prepared(const PyMatcher& m, const am::OccupancyGrid* source_grid
 
 MergeRun run_merge(const DefaultMatcher& matcher, std::vector<Prepared> maps, std::optional<std::size_t> reference,
                    std::optional<double> resolution, double wall_share, double max_residual, bool until_connected,
-                   bool same_side, unsigned threads, std::vector<std::string> names, bool build_merged_map) {
+                   bool same_side, unsigned threads, std::vector<std::string> names, bool build_merged_map, bool non_rigid,
+                   std::optional<double> control_spacing, std::optional<double> bend_length) {
   am::MergeParams params;
+  params.non_rigid = non_rigid;
+  if (!non_rigid && (control_spacing || bend_length)) {
+    throw am::parameter_error("control_spacing and bend_length shape the warps of non_rigid=True; set non_rigid=True too");
+  }
+  if (control_spacing) params.warp.control_spacing_m = *control_spacing;
+  if (bend_length) params.warp.bend_length_m = *bend_length;
   params.reference = reference.value_or(0);
   if (resolution) {
     am::detail::require_positive(*resolution, "resolution");
@@ -269,6 +276,18 @@ py::dict merged_map_dict(const am::MergedMap& m) {
   d["T_reference_map"] = m.T_reference_map.matrix();
   d["pixel_transform"] = am::PixelTransform(m.pixel_transform);
   d["residual_m"] = m.residual_m;
+  if (m.warp) {
+    py::dict w;
+    w["rigid_median_m"] = m.warp->rigid_median_m;
+    w["warped_median_m"] = m.warp->warped_median_m;
+    w["rigid_p95_m"] = m.warp->rigid_p95_m;
+    w["warped_p95_m"] = m.warp->warped_p95_m;
+    w["median_displacement_m"] = m.warp->median_displacement_m;
+    w["max_displacement_m"] = m.warp->max_displacement_m;
+    d["warp"] = w;
+  } else {
+    d["warp"] = py::none();
+  }
   return d;
 }
 
@@ -548,13 +567,15 @@ PYBIND11_MODULE(_core, m) {
           "merge",
           [](const PyMatcher& p, std::vector<Prepared> maps, std::optional<std::size_t> reference, std::optional<double> resolution,
              double wall_share, double max_residual, bool until_connected, bool same_side, unsigned threads,
-             std::vector<std::string> names, bool build_merged_map) {
+             std::vector<std::string> names, bool build_merged_map, bool non_rigid, std::optional<double> control_spacing,
+             std::optional<double> bend_length) {
             return run_merge(p.matcher, std::move(maps), reference, resolution, wall_share, max_residual, until_connected,
-                             same_side, threads, std::move(names), build_merged_map);
+                             same_side, threads, std::move(names), build_merged_map, non_rigid, control_spacing, bend_length);
           },
           py::arg("maps"), py::kw_only(), py::arg("reference") = py::none(), py::arg("resolution") = py::none(),
           py::arg("wall_share") = 0.5, py::arg("max_residual") = 1.0, py::arg("until_connected") = false,
           py::arg("same_side") = true, py::arg("threads") = 1, py::arg("names") = std::vector<std::string>{}, py::arg("build_merged_map") = true,
+          py::arg("non_rigid") = false, py::arg("control_spacing") = py::none(), py::arg("bend_length") = py::none(),
           release_gil(), "Places prepared maps in the frame of maps[reference] and fuses them (as `areamatch merge`).");
 
   py::class_<MergeRun>(m, "MergeResult", "Several maps placed in one frame, with the merged map.")
@@ -566,7 +587,16 @@ PYBIND11_MODULE(_core, m) {
                                for (const auto& map : r.result.maps) out.append(merged_map_dict(map));
                                return out;
                              },
-                             "per map: placed, reason, T_reference_map (3x3), pixel_transform (2x3), residual_m")
+                             "per map: placed, reason, T_reference_map (3x3), pixel_transform (2x3), residual_m, warp (non_rigid: its wall figures, else None)")
+      .def_property_readonly("double_walls",
+                             [](const MergeRun& r) {
+                               py::dict d;
+                               d["wall_cells"] = r.result.double_walls.wall_cells;
+                               d["doubled_cells"] = r.result.double_walls.doubled_cells;
+                               d["share"] = r.result.double_walls.share();
+                               return d;
+                             },
+                             "the merged map's wall cells and the doubled ones (merge/double_walls.hpp)")
       .def_property_readonly("merged", [](const MergeRun& r) { return r.result.merged; }, "the fused Map (reference frame)")
       .def("edge_results",
            [](const MergeRun& r) {

@@ -35,6 +35,23 @@ def test_merge_places_every_map(building):
     assert as_matched.ok and as_matched.timings["refine_s"] == 0
 
 
+def test_merge_non_rigid(building):
+    import pytest
+    maps = [building.layout] + [r.map for r in robot_maps(building, 2)]
+    rigid = areamatch.merge(maps)
+    bent = areamatch.merge(maps, non_rigid=True, bend_length=5.0)
+    assert rigid.ok and bent.ok
+    assert rigid.maps[1]["warp"] is None and bent.maps[0]["warp"] is None
+    for placed in bent.maps[1:]:
+        # these maps are not bent: the warp may only leave them as they were (within noise)
+        assert placed["warp"]["warped_median_m"] <= placed["warp"]["rigid_median_m"] + 0.005
+    assert set(bent.double_walls) == {"wall_cells", "doubled_cells", "share"}
+    assert bent.to_dict()["merged"]["doubled_wall_cells"] == bent.double_walls["doubled_cells"]
+    assert bent.timings["warp_s"] > 0
+    with pytest.raises(ValueError, match="non_rigid"):
+        areamatch.merge(maps, bend_length=5.0)
+
+
 def test_merge_reports_a_stranger(building):
     stranger = areamatch.synthetic.generate_building(4321, width_m=22.0, height_m=28.0).layout
     result = areamatch.merge([building.layout, robot_maps(building, 1)[0].map, stranger],

@@ -145,16 +145,24 @@ inline std::string match_result_json(const MatchResult& r) {
   return out;
 }
 
+namespace detail {
+
+/// A warp's figures as JSON members (no braces), metres.
+inline std::string warp_figures_json(const WarpResult& w) {
+  return "\"source_wall_points\": " + std::to_string(w.source_wall_points) + ", \"paired_points\": " + std::to_string(w.paired_points) +
+         ", \"rigid_median_m\": " + json_number(w.rigid_median_m) + ", \"rigid_p95_m\": " + json_number(w.rigid_p95_m) +
+         ", \"warped_median_m\": " + json_number(w.warped_median_m) + ", \"warped_p95_m\": " + json_number(w.warped_p95_m) +
+         ", \"median_displacement_m\": " + json_number(w.median_displacement_m) +
+         ", \"max_displacement_m\": " + json_number(w.max_displacement_m);
+}
+
+}  // namespace detail
+
 /// A warp's figures (what `areamatch warp --json` prints under "warp"), metres and seconds.
 inline std::string warp_result_json(const WarpResult& w, const WarpParams& params, double warp_s) {
   using detail::json_number;
   return "{\"control_spacing_m\": " + json_number(params.control_spacing_m) + ", \"bend_length_m\": " +
-         json_number(params.bend_length_m) + ", \"source_wall_points\": " + std::to_string(w.source_wall_points) +
-         ", \"paired_points\": " + std::to_string(w.paired_points) + ", \"rigid_median_m\": " + json_number(w.rigid_median_m) +
-         ", \"rigid_p95_m\": " + json_number(w.rigid_p95_m) + ", \"warped_median_m\": " + json_number(w.warped_median_m) +
-         ", \"warped_p95_m\": " + json_number(w.warped_p95_m) + ", \"median_displacement_m\": " +
-         json_number(w.median_displacement_m) + ", \"max_displacement_m\": " + json_number(w.max_displacement_m) +
-         ", \"warp_s\": " + json_number(warp_s) + "}";
+         json_number(params.bend_length_m) + ", " + detail::warp_figures_json(w) + ", \"warp_s\": " + json_number(warp_s) + "}";
 }
 
 namespace detail {
@@ -255,7 +263,9 @@ inline std::string merge_result_json(const MergeResult& r, const std::vector<std
     out += ", \"pixel_transform\": " + detail::json_pixel_transform(m.pixel_transform) +
            ", \"rotation_deg\": " + json_number(T.rotation * 180.0 / pi) + ", \"translation_m\": [" +
            json_number(T.translation.x()) + ", " + json_number(T.translation.y()) + "], \"scale\": " + json_number(T.scale) +
-           ", \"reflected\": " + (T.reflected ? "true" : "false") + ", \"residual_m\": " + json_number(m.residual_m) + "}";
+           ", \"reflected\": " + (T.reflected ? "true" : "false") + ", \"residual_m\": " + json_number(m.residual_m);
+    if (m.warp) out += ", \"warp\": {" + detail::warp_figures_json(*m.warp) + "}";
+    out += "}";
   }
   out += "], \"edges\": [";
   for (std::size_t i = 0; i < r.edges.size(); ++i) {
@@ -269,12 +279,14 @@ inline std::string merge_result_json(const MergeResult& r, const std::vector<std
   }
   out += "], \"merged\": {\"width\": " + std::to_string(r.merged.width()) + ", \"height\": " + std::to_string(r.merged.height()) +
          ", \"resolution\": " + json_number(r.merged.empty() ? 0.0 : r.merged.resolution()) + ", \"origin\": [" +
-         json_number(r.merged.origin().x) + ", " + json_number(r.merged.origin().y) + ", " + json_number(r.merged.origin().yaw) + "]}";
+         json_number(r.merged.origin().x) + ", " + json_number(r.merged.origin().y) + ", " + json_number(r.merged.origin().yaw) + "], \"wall_cells\": " + std::to_string(r.double_walls.wall_cells) +
+         ", \"doubled_wall_cells\": " + std::to_string(r.double_walls.doubled_cells) +
+         ", \"doubled_share\": " + json_number(r.double_walls.share()) + "}";
   out += ", \"timings\": {";
   for (const auto& [key, seconds] : extra_timings) out += json_quote(key) + ": " + json_number(seconds) + ", ";
   const MergeTimings& t = r.timings;
   out += "\"matching_s\": " + json_number(t.matching_s) + ", \"refine_s\": " + json_number(t.refine_s) +
-         ", \"fit_s\": " + json_number(t.fit_s) +
+         ", \"fit_s\": " + json_number(t.fit_s) + ", \"warp_s\": " + json_number(t.warp_s) +
          ", \"fuse_s\": " + json_number(t.fuse_s) + ", \"merge_s\": " + json_number(t.total_s) + "}}";
   return out;
 }

@@ -16,6 +16,7 @@
 #include "../grid.hpp"
 #include "../image.hpp"
 #include "../transform.hpp"
+#include "../warp/field.hpp"
 
 #include <Eigen/Geometry>
 
@@ -40,9 +41,15 @@ struct FuseParams {
   /// Unknown border kept around the cells some map saw (the maps' unknown margins are cut away:
   /// hand-held scans are mostly margin); negative: keep the maps' whole extent.
   double margin_m = 1.0;
+  /// A warped map (`fuse_warped_maps`) is read through its warp's exact inverse at cells this far
+  /// apart and bilinearly between them: a warp bends over metres (`WarpParams::bend_length_m`),
+  /// so between points a quarter metre apart it is as good as straight (off by millimetres),
+  /// and the inverse is found once per 25 cells at 0.05 m instead of once per cell.
+  double warp_lattice_m = 0.25;
 
   void validate() const {
     detail::require_non_negative(resolution, "FuseParams::resolution");
+    detail::require_positive(warp_lattice_m, "FuseParams::warp_lattice_m");
     if (!std::isfinite(margin_m)) throw parameter_error("FuseParams::margin_m must be finite");
     if (!(wall_share > 0.0 && wall_share <= 1.0)) {
       throw parameter_error("FuseParams::wall_share must be in (0, 1], got " + std::to_string(wall_share));
@@ -109,27 +116,26 @@ inline OccupancyGrid crop_to_known(const OccupancyGrid& grid, double margin_m) {
 
 }  // namespace detail
 
-/// Lays `maps[i]` into one grid by `T_reference_map[i]` (map world → the merged grid's world
-/// frame) and fuses them by the rule of the file comment. The merged grid's origin has yaw 0; it
-/// covers the cells some map saw plus `margin_m` (or the maps' whole union). Throws `limit_error`
-/// when that needs more than `max_grid_cells` cells at the resolution.
-inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, const std::vector<Similarity2>& T_reference_map,
-                               const FuseParams& params = {}) {
+namespace detail {
+
+/// Fuses maps already laid into the merged frame (file comment): `outline[i]` are points of the
+/// merged world around map i's known cells (the merged grid covers them all; a map is read only
+/// inside their box), and `lay(merged)` gives, for the merged grid once it is laid out, the
+/// function `(i, col, row)` → map i's pixel under merged cell (col, row). The rigid and the
+/// warped merge differ only in these two.
+template <class Lay>
+OccupancyGrid fuse_laid(const std::vector<const OccupancyGrid*>& maps, const std::vector<std::vector<Eigen::Vector2d>>& outline,
+                        const Lay& lay, const FuseParams& params) {
   params.validate();
-  if (maps.empty() || maps.size() != T_reference_map.size()) {
-    throw parameter_error("fuse_maps: needs at least one map and one pose per map");
-  }
+  if (maps.empty() || maps.size() != outline.size()) throw parameter_error("fuse_maps: needs at least one map and one pose per map");
   if (maps.size() > std::numeric_limits<std::uint16_t>::max()) throw limit_error("fuse_maps: more than 65535 maps");
   double resolution = params.resolution;
   Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity());
   Eigen::Vector2d high = -low;
-  std::vector<std::array<Eigen::Vector2d, 4>> corners;  // of each map's known cells, its world
   for (std::size_t i = 0; i < maps.size(); ++i) {
     if (maps[i] == nullptr || maps[i]->empty()) throw parameter_error("fuse_maps: map " + std::to_string(i) + " is empty");
     if (params.resolution == 0.0) resolution = i == 0 ? maps[i]->resolution() : std::min(resolution, maps[i]->resolution());
-    corners.push_back(params.margin_m < 0.0 ? grid_corners(*maps[i]) : detail::known_corners(*maps[i]));
-    for (const auto& corner : corners.back()) {
-      const Eigen::Vector2d p = T_reference_map[i] * corner;
+    for (const auto& p : outline[i]) {
       low = low.cwiseMin(p);
       high = high.cwiseMax(p);
     }
@@ -150,16 +156,16 @@ inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, co
   OccupancyGrid merged(std::max(1, static_cast<int>(width_cells)), std::max(1, static_cast<int>(height_cells)), resolution,
                        Pose2{low.x(), low.y(), 0.0});
 
+  const auto map_pixel = lay(static_cast<const OccupancyGrid&>(merged));
   std::vector<std::uint16_t> occupied(merged.cells().size(), 0), free(merged.cells().size(), 0);
   for (std::size_t i = 0; i < maps.size(); ++i) {
     const OccupancyGrid& map = *maps[i];
-    // Merged pixel → map pixel, and the merged pixels the map can cover.
-    const Eigen::Affine2d map_from_merged = map.pixel_from_world() * T_reference_map[i].affine().inverse() * merged.world_from_pixel();
+    // The merged pixels the map can cover.
     Eigen::Vector2d pixel_low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), pixel_high = -pixel_low;
-    for (const auto& corner : corners[i]) {
-      const Eigen::Vector2d p = merged.world_to_pixel(T_reference_map[i] * corner);
-      pixel_low = pixel_low.cwiseMin(p);
-      pixel_high = pixel_high.cwiseMax(p);
+    for (const auto& p : outline[i]) {
+      const Eigen::Vector2d q = merged.world_to_pixel(p);
+      pixel_low = pixel_low.cwiseMin(q);
+      pixel_high = pixel_high.cwiseMax(q);
     }
     const int col0 = std::max(0, static_cast<int>(std::floor(pixel_low.x())));
     const int col1 = std::min(merged.width() - 1, static_cast<int>(std::ceil(pixel_high.x())));
@@ -167,7 +173,7 @@ inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, co
     const int row1 = std::min(merged.height() - 1, static_cast<int>(std::ceil(pixel_high.y())));
     for (int row = row0; row <= row1; ++row) {
       for (int col = col0; col <= col1; ++col) {
-        const Eigen::Vector2d p = map_from_merged * Eigen::Vector2d(col, row);
+        const Eigen::Vector2d p = map_pixel(i, col, row);
         const int c = static_cast<int>(std::floor(p.x() + 0.5)), r = static_cast<int>(std::floor(p.y() + 0.5));
         if (!map.contains(c, r)) continue;
         const CellState s = map.at(c, r);
@@ -183,6 +189,127 @@ inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, co
     else if (free[k] > 0) merged.cells()[k] = CellState::free;
   }
   return params.margin_m < 0.0 ? merged : detail::crop_to_known(merged, params.margin_m);
+}
+
+/// The corners of the part of `grid` a fusion reads (its known cells', or with a negative
+/// margin its whole image's), in its world frame.
+inline std::array<Eigen::Vector2d, 4> fused_corners(const OccupancyGrid& grid, const FuseParams& params) {
+  return params.margin_m < 0.0 ? grid_corners(grid) : known_corners(grid);
+}
+
+}  // namespace detail
+
+/// Lays `maps[i]` into one grid by `T_reference_map[i]` (map world → the merged grid's world
+/// frame) and fuses them by the rule of the file comment. The merged grid's origin has yaw 0; it
+/// covers the cells some map saw plus `margin_m` (or the maps' whole union). Throws `limit_error`
+/// when that needs more than `max_grid_cells` cells at the resolution.
+inline OccupancyGrid fuse_maps(const std::vector<const OccupancyGrid*>& maps, const std::vector<Similarity2>& T_reference_map,
+                               const FuseParams& params = {}) {
+  params.validate();
+  if (maps.empty() || maps.size() != T_reference_map.size()) {
+    throw parameter_error("fuse_maps: needs at least one map and one pose per map");
+  }
+  std::vector<std::vector<Eigen::Vector2d>> outline(maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    if (maps[i] == nullptr || maps[i]->empty()) throw parameter_error("fuse_maps: map " + std::to_string(i) + " is empty");
+    for (const auto& corner : detail::fused_corners(*maps[i], params)) outline[i].push_back(T_reference_map[i] * corner);
+  }
+  auto lay = [&](const OccupancyGrid& merged) {
+    std::vector<Eigen::Affine2d> map_from_merged(maps.size());  // merged pixel → map pixel
+    for (std::size_t m = 0; m < maps.size(); ++m) {
+      map_from_merged[m] = maps[m]->pixel_from_world() * T_reference_map[m].affine().inverse() * merged.world_from_pixel();
+    }
+    return [map_from_merged](std::size_t i, int col, int row) { return Eigen::Vector2d(map_from_merged[i] * Eigen::Vector2d(col, row)); };
+  };
+  return detail::fuse_laid(maps, outline, lay, params);
+}
+
+namespace detail {
+
+/// The border of the box `corners`, a point every `spacing_m`, through `warp`: a warp's image of
+/// a box is bounded by the image of its border.
+inline std::vector<Eigen::Vector2d> warped_outline(const std::array<Eigen::Vector2d, 4>& corners, const WarpField& warp, double spacing_m) {
+  std::vector<Eigen::Vector2d> outline;
+  for (std::size_t k = 0; k < corners.size(); ++k) {
+    const Eigen::Vector2d a = corners[k], b = corners[(k + 1) % corners.size()];
+    const int steps = std::max(1, static_cast<int>(std::ceil((b - a).norm() / spacing_m)));
+    for (int s = 0; s < steps; ++s) outline.push_back(warp.apply(a + (b - a) * (static_cast<double>(s) / steps)));
+  }
+  return outline;
+}
+
+/// A map's pixels under a merged grid's cells through a warp (map world → merged world): the
+/// warp's exact inverse at lattice cells every `step`, bilinear between (`FuseParams::warp_lattice_m`);
+/// a rigid warp is read exactly, as an affine map.
+class WarpedPixels {
+ public:
+  WarpedPixels(const OccupancyGrid& map, const WarpField& warp, const OccupancyGrid& merged, const std::vector<Eigen::Vector2d>& outline,
+               double lattice_m)
+      : rigid_(warp.is_rigid()),
+        affine_(map.pixel_from_world() * warp.rigid().affine().inverse() * merged.world_from_pixel()) {
+    if (rigid_) return;
+    Eigen::Vector2d low = Eigen::Vector2d::Constant(std::numeric_limits<double>::infinity()), high = -low;
+    for (const auto& p : outline) {
+      const Eigen::Vector2d q = merged.world_to_pixel(p);
+      low = low.cwiseMin(q);
+      high = high.cwiseMax(q);
+    }
+    step_ = std::max(1, static_cast<int>(std::lround(lattice_m / merged.resolution())));
+    col0_ = static_cast<int>(std::floor(low.x())) - step_;
+    row0_ = static_cast<int>(std::floor(low.y())) - step_;
+    columns_ = static_cast<int>(std::ceil((high.x() - col0_) / step_)) + 2;
+    rows_ = static_cast<int>(std::ceil((high.y() - row0_) / step_)) + 2;
+    const Eigen::Affine2d map_pixel = map.pixel_from_world(), merged_world = merged.world_from_pixel();
+    const double tolerance = 0.01 * merged.resolution();
+    lattice_.reserve(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_));
+    for (int j = 0; j < rows_; ++j) {
+      for (int i = 0; i < columns_; ++i) {
+        const Eigen::Vector2d cell(col0_ + i * step_, row0_ + j * step_);
+        lattice_.push_back(map_pixel * warp.inverse(merged_world * cell, tolerance));
+      }
+    }
+  }
+
+  /// The map pixel under merged cell (col, row) (inside the outline's box; beyond it, the
+  /// nearest lattice border's).
+  Eigen::Vector2d at(int col, int row) const {
+    if (rigid_) return affine_ * Eigen::Vector2d(col, row);
+    const double u = std::clamp(static_cast<double>(col - col0_) / step_, 0.0, columns_ - 1.000001);
+    const double v = std::clamp(static_cast<double>(row - row0_) / step_, 0.0, rows_ - 1.000001);
+    const int i = static_cast<int>(u), j = static_cast<int>(v);
+    const double tu = u - i, tv = v - j;
+    const std::size_t k = static_cast<std::size_t>(j) * static_cast<std::size_t>(columns_) + static_cast<std::size_t>(i);
+    const std::size_t below = k + static_cast<std::size_t>(columns_);
+    return (1 - tv) * ((1 - tu) * lattice_[k] + tu * lattice_[k + 1]) + tv * ((1 - tu) * lattice_[below] + tu * lattice_[below + 1]);
+  }
+
+ private:
+  bool rigid_ = true;
+  Eigen::Affine2d affine_;
+  int step_ = 1, col0_ = 0, row0_ = 0, columns_ = 0, rows_ = 0;
+  std::vector<Eigen::Vector2d> lattice_;
+};
+
+}  // namespace detail
+
+/// Lays `maps[i]` into one grid through `warps[i]` (map world → the merged grid's world frame,
+/// e.g. fitted by `fit_warp`) and fuses them as `fuse_maps` does. Each merged cell reads the map
+/// cell the warp brings under it (the warp's inverse: see `FuseParams::warp_lattice_m`).
+inline OccupancyGrid fuse_warped_maps(const std::vector<const OccupancyGrid*>& maps, const std::vector<WarpField>& warps,
+                                      const FuseParams& params = {}) {
+  params.validate();
+  if (maps.empty() || maps.size() != warps.size()) throw parameter_error("fuse_warped_maps: needs at least one map and one warp per map");
+  std::vector<std::vector<Eigen::Vector2d>> outline(maps.size());
+  for (std::size_t i = 0; i < maps.size(); ++i) {
+    if (maps[i] == nullptr || maps[i]->empty()) throw parameter_error("fuse_warped_maps: map " + std::to_string(i) + " is empty");
+    outline[i] = detail::warped_outline(detail::fused_corners(*maps[i], params), warps[i], params.warp_lattice_m);
+  }
+  auto lay = [&](const OccupancyGrid& merged) {
+    std::vector<detail::WarpedPixels> pixels;
+    for (std::size_t m = 0; m < maps.size(); ++m) pixels.emplace_back(*maps[m], warps[m], merged, outline[m], params.warp_lattice_m);
+    return [pixels = std::move(pixels)](std::size_t i, int col, int row) { return pixels[i].at(col, row); };
+  };
+  return detail::fuse_laid(maps, outline, lay, params);
 }
 
 }  // namespace areamatch

@@ -22,8 +22,11 @@ class WarpField {
   /// A field of `columns` × `rows` nodes `spacing_m` apart from `origin` (source world), every
   /// displacement zero: the rigid transform alone.
   WarpField(const Similarity2& rigid, const Eigen::Vector2d& origin, double spacing_m, int columns, int rows)
-      : rigid_(rigid), rigid_linear_(rigid.linear()), origin_(origin), spacing_(spacing_m), columns_(std::max(columns, 2)), rows_(std::max(rows, 2)),
+      : rigid_(rigid), rigid_linear_(rigid.linear()), rigid_back_(rigid.affine().inverse()), origin_(origin), spacing_(spacing_m), columns_(std::max(columns, 2)), rows_(std::max(rows, 2)),
         displacement_(static_cast<std::size_t>(columns_) * static_cast<std::size_t>(rows_), Eigen::Vector2d::Zero()) {}
+
+  /// The rigid transform alone (no displacement anywhere).
+  explicit WarpField(const Similarity2& rigid) : WarpField(rigid, Eigen::Vector2d::Zero(), 1.0, 2, 2) {}
 
   /// The rigid part: source world → destination world.
   const Similarity2& rigid() const { return rigid_; }
@@ -69,6 +72,11 @@ class WarpField {
     return d;
   }
 
+  /// Whether no node is displaced: the field is its rigid part alone.
+  bool is_rigid() const {
+    return std::all_of(displacement_.begin(), displacement_.end(), [](const Eigen::Vector2d& d) { return d.isZero(0.0); });
+  }
+
   /// The rigid part alone at a source point (its matrix kept: no sine and cosine per point).
   Eigen::Vector2d apply_rigid(const Eigen::Vector2d& source_world) const {
     return rigid_linear_ * source_world + rigid_.translation;
@@ -81,7 +89,7 @@ class WarpField {
   /// iteration x ← T⁻¹(y − d(x)) (which converges while the displacement bends less than the
   /// rigid part, as any warp `fit_warp` makes does); within `tolerance_m` of exact.
   Eigen::Vector2d inverse(const Eigen::Vector2d& dest_world, double tolerance_m = 1e-6) const {
-    const Eigen::Affine2d back = rigid_.affine().inverse();
+    const Eigen::Affine2d& back = rigid_back_;
     Eigen::Vector2d x = back * dest_world;
     for (int iteration = 0; iteration < 50; ++iteration) {
       const Eigen::Vector2d next = back * (dest_world - displacement(x));
@@ -95,6 +103,7 @@ class WarpField {
  private:
   Similarity2 rigid_;
   Eigen::Matrix2d rigid_linear_ = Eigen::Matrix2d::Identity();
+  Eigen::Affine2d rigid_back_ = Eigen::Affine2d::Identity();  // the rigid part's inverse, for `inverse`
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   double spacing_ = 1.0;
   int columns_ = 2, rows_ = 2;
