@@ -18,9 +18,10 @@ struct BentCase {
   MatchResult match;
 };
 
-BentCase bent_case(std::uint64_t seed, double bend_m, double wavelength_m) {
+BentCase bent_case(std::uint64_t seed, double bend_m, double wavelength_m, double scale_drift = 0.0) {
   BentCase c{generate_building({}, 900 + seed), {}, {}};
   RobotMapParams rp;
+  rp.scale_drift = scale_drift;
   rp.rotation_rad = 0.3 + 1.1 * static_cast<double>(seed);
   rp.wall_bend_m = bend_m;
   rp.bend_wavelength_m = wavelength_m;
@@ -71,6 +72,34 @@ TEST_CASE("the warp undoes a generated building-wide bend that the rigid answer 
     judged += rigid[0] >= 0.15;
   }
   CHECK(judged >= cases / 2);  // the bends are large enough to matter
+}
+
+TEST_CASE("generated scale drift: its truth is exact, and the warp takes out what the rigid answer leaves") {
+  // The truth: a drift of 3 % moves points along the building's longer side by rate s² / 2L.
+  const SyntheticBuilding building = generate_building({}, 905);
+  RobotMapParams rp;
+  rp.scale_drift = 0.03;
+  const RobotMap drifted = make_robot_map(building, rp, 77);
+  rp.scale_drift = 0.0;
+  const RobotMap plain = make_robot_map(building, rp, 77);
+  CHECK(drifted.T_dest_source.translation == plain.T_dest_source.translation);
+  const double length = std::max(building.params.width_m, building.params.height_m);
+  const Eigen::Vector2d far_end = drifted.drift.axis * length;
+  CHECK((drifted.smooth(far_end) - far_end).norm() == doctest::Approx(0.015 * length));
+  CHECK((drifted.smooth_inverse(drifted.smooth(far_end)) - far_end).norm() < 1e-6);
+  CHECK(drifted.grid != plain.grid);
+  rp.scale_drift = 0.5;
+  CHECK_THROWS_AS(make_robot_map(building, rp, 77), parameter_error);
+
+  const BentCase c = bent_case(5, 0.0, 60.0, 0.03);
+  REQUIRE(std::abs(wrap_angle(c.match.T_dest_source.rotation - c.robot.T_dest_source.rotation)) < 0.15);
+  const WarpResult warp = fit_warp(c.robot.grid, c.building.layout, c.match.T_dest_source);
+  const auto rigid = wall_point_errors(c, [&](const Eigen::Vector2d& p) { return c.match.T_dest_source * p; });
+  const auto warped = wall_point_errors(c, [&](const Eigen::Vector2d& p) { return warp.field.apply(p); });
+  MESSAGE("scale drift 3 %: rigid " << rigid[0] << " / " << rigid[1] << " m, warp " << warped[0] << " / " << warped[1]
+                                    << " m (median / 95th percentile)");
+  CHECK(warped[0] < 0.5 * rigid[0]);
+  CHECK(warped[0] <= 0.05);
 }
 
 TEST_CASE("the warp's inverse returns points, and a map resampled through it lies on the destination") {

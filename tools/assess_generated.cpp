@@ -46,8 +46,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
     for (int col = 0; col < grid.width(); ++col) {
       if (grid.at(col, row) != areamatch::CellState::free) continue;
       const Eigen::Vector2d s = grid.cell_center(col, row);
-      Eigen::Vector2d bent = robot.T_dest_source * s;
-      bent += robot.bend(bent);
+      const Eigen::Vector2d bent = robot.smooth(robot.T_dest_source * s);
       const int piece = robot.piece_at(bent);
       const int label = map_graph.labels[grid.index(col, row)];
       if (label >= 0) {
@@ -57,15 +56,14 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
     }
   }
   // Coverage: the robot cell that truly shows each raster centre, found by inverting the truth
-  // (each piece's motion, then the bend by fixed point, then the rigid transform).
+  // (each piece's motion, then the bend and drift by fixed point, then the rigid transform).
   const areamatch::Similarity2 back = robot.T_dest_source.inverse();
   for (std::size_t k = 0; k < reference_raster.centres.size(); ++k) {
     const Eigen::Vector2d& c = reference_raster.centres[k];
     for (int piece = 0; piece <= static_cast<int>(robot.breaks.size()); ++piece) {
       const Eigen::Vector2d bent = robot.piece_motion(piece).inverse() * c;
       if (robot.piece_at(bent) != piece) continue;
-      Eigen::Vector2d p = bent;  // p + bend(p) = bent
-      for (int it = 0; it < 100; ++it) p = bent - robot.bend(p);
+      const Eigen::Vector2d p = robot.smooth_inverse(bent);
       const Eigen::Vector2i cell = grid.world_to_cell(back * p);
       if (grid.contains(cell.x(), cell.y()) && grid.at(cell.x(), cell.y()) == areamatch::CellState::free) seen[k] = 1;
       break;

@@ -106,6 +106,11 @@ struct RobotMapParams {
   /// wavelength of that distortion (0: half the building's longer side, at least 10 m); longer
   /// is gentler (a building-wide drift rather than a wavy map)
   double bend_wavelength_m = 0.0;
+  /// Scale drift (odometry that over- or under-counts distance more and more): along the
+  /// building's longer side the layout metres per map metre grow linearly from 1 at its start to
+  /// 1 + `scale_drift` at its end (negative: shrink), on top of the bend. 0.02 stretches a 40 m
+  /// building's far end by 2 % and shifts it by 0.4 m. The truth is `RobotMap::drift`.
+  double scale_drift = 0.0;
   /// Broken pieces (a failed loop closure): this many straight cuts across the building's longer
   /// side, evenly spaced; everything beyond a cut is turned about the cut's middle by an angle
   /// drawn from [break_min_rotation_rad, break_max_rotation_rad] (either sign) and shifted by up
@@ -174,6 +179,22 @@ struct BendField {
   }
 };
 
+/// The scale drift of a generated robot map (`RobotMapParams::scale_drift`), in the layout's
+/// frame: a point `s` metres along `axis` from `start_m` moves `rate · s² / (2 · length_m)` along
+/// it, so that the local scale along the axis is 1 + rate · s / length_m.
+struct ScaleDrift {
+  double rate = 0.0;
+  Eigen::Vector2d axis = Eigen::Vector2d::UnitX();
+  double start_m = 0.0;
+  double length_m = 1.0;
+  /// Where the drifting map shows layout point p (p itself without drift).
+  Eigen::Vector2d operator()(const Eigen::Vector2d& p) const {
+    if (rate == 0.0) return p;
+    const double s = p.dot(axis) - start_m;
+    return p + (rate * s * s / (2.0 * length_m)) * axis;
+  }
+};
+
 /// One broken piece's cut of a generated robot map (`RobotMapParams::break_count`), in the
 /// layout's frame: layout points beyond the cut ((p − point) · normal > 0) are shown moved by
 /// `motion` (after the bend; the cuts in order, each on top of the ones before it).
@@ -194,9 +215,26 @@ struct RobotMap {
   std::vector<int> explored_areas;    ///< ids of the areas the robot entered, ascending
   std::vector<Polygon2> clutter;      ///< furniture, layout world frame
   BendField bend;                     ///< the smooth distortion (none unless `wall_bend_m`)
+  ScaleDrift drift;                   ///< the scale drift (none unless `scale_drift`)
   std::vector<MapBreak> breaks;       ///< the broken pieces' cuts (none unless `break_count`)
-  /// Which piece a layout point (rigid transform and bend applied) falls in: the number of cuts it
-  /// lies beyond (0: the piece that did not move).
+  /// A layout point (rigid transform applied) with the smooth distortions applied: the bend, then
+  /// the scale drift.
+  Eigen::Vector2d smooth(Eigen::Vector2d p) const {
+    p += bend(p);
+    return drift(p);
+  }
+  /// The point `smooth` takes to `q` (by fixed-point iteration; the distortions are gentle).
+  Eigen::Vector2d smooth_inverse(const Eigen::Vector2d& q) const {
+    Eigen::Vector2d p = q;
+    for (int it = 0; it < 100; ++it) {
+      const Eigen::Vector2d step = q - smooth(p);
+      p += step;
+      if (step.norm() < 1e-9) break;
+    }
+    return p;
+  }
+  /// Which piece a layout point (rigid transform and smooth distortions applied) falls in: the
+  /// number of cuts it lies beyond (0: the piece that did not move).
   int piece_at(const Eigen::Vector2d& bent) const {
     int piece = 0;
     for (const MapBreak& b : breaks) piece += b.beyond(bent);
@@ -208,10 +246,10 @@ struct RobotMap {
     for (int i = 0; i < k && i < static_cast<int>(breaks.size()); ++i) m = breaks[static_cast<std::size_t>(i)].motion * m;
     return m;
   }
-  /// The layout point a robot-map point shows: the rigid transform, the bend, then its piece's motion.
+  /// The layout point a robot-map point shows: the rigid transform, the bend and scale drift, then
+  /// its piece's motion.
   Eigen::Vector2d true_dest(const Eigen::Vector2d& source_world) const {
-    Eigen::Vector2d p = T_dest_source * source_world;
-    p += bend(p);
+    const Eigen::Vector2d p = smooth(T_dest_source * source_world);
     return breaks.empty() ? p : piece_motion(piece_at(p)) * p;
   }
 };
@@ -259,6 +297,7 @@ inline void RobotMapParams::validate() const {
   non_negative(wall_noise_m, "wall_noise_m");
   non_negative(wall_bend_m, "wall_bend_m");
   non_negative(bend_wavelength_m, "bend_wavelength_m");
+  if (!(std::abs(scale_drift) <= 0.2)) throw parameter_error("RobotMapParams::scale_drift must be within [-0.2, 0.2] (a share), got " + std::to_string(scale_drift));
   if (break_count < 0 || break_count > 20) throw parameter_error("RobotMapParams::break_count must be in [0, 20]");
   non_negative(break_min_rotation_rad, "break_min_rotation_rad");
   if (!(break_max_rotation_rad >= break_min_rotation_rad && break_max_rotation_rad < pi)) {
@@ -694,7 +733,9 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
   const Eigen::Vector4d phase(random.uniform(0, phase_range), random.uniform(0, phase_range), random.uniform(0, phase_range),
                               random.uniform(0, phase_range));
   robot.bend = BendField{params.wall_bend_m, wavelength, phase};
-  const BendField& bend = robot.bend;
+  const bool drift_along_x = bp.width_m >= bp.height_m;
+  robot.drift = ScaleDrift{params.scale_drift, drift_along_x ? Eigen::Vector2d::UnitX() : Eigen::Vector2d::UnitY(), 0.0,
+                           std::max(bp.width_m, bp.height_m)};
   // Broken pieces: cuts across the longer side (drawn only when asked for, so that maps without
   // them keep their random stream).
   const bool along_x = bp.width_m >= bp.height_m;
@@ -722,8 +763,7 @@ inline RobotMap make_robot_map(const SyntheticBuilding& building, const RobotMap
   const CellState outside = params.unknown_outside ? CellState::unknown : CellState::occupied;
   for (int row = 0; row < height; ++row) {
     for (int col = 0; col < width; ++col) {
-      Eigen::Vector2d p = robot.T_dest_source * robot.grid.cell_center(col, row);
-      p += bend(p);
+      Eigen::Vector2d p = robot.smooth(robot.T_dest_source * robot.grid.cell_center(col, row));
       if (!robot.breaks.empty()) p = robot.piece_motion(robot.piece_at(p)) * p;
       if (params.wall_noise_m > 0.0) p += params.wall_noise_m * Eigen::Vector2d(random.normal(), random.normal());
       const Eigen::Vector2i cell = layout.world_to_cell(p);
