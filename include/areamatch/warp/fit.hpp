@@ -109,6 +109,7 @@ inline BoundaryLookup wall_lookup(const OccupancyGrid& grid, const WarpParams& p
 inline std::vector<Eigen::Triplet<double>> smoothness_terms(const WarpField& field, const WarpParams& params,
                                                             const std::vector<int>& node_piece = {}) {
   std::vector<Eigen::Triplet<double>> out;
+  out.reserve(2 * (1 + 9 + 9 + 16) * field.node_count());  // per node: rest, two second differences, one mixed
   const double h = field.spacing(), h2 = h * h;
   const double bend = params.bending_weight() * h2 / (h2 * h2);  // κ · area per node · (1/h²)²
   auto add = [&](const std::size_t* nodes, const double* coefficients, int count, double weight) {
@@ -170,12 +171,15 @@ inline std::vector<WarpPair> warp_pairs(const WarpField& field, const std::vecto
   }
   const std::size_t keep = static_cast<std::size_t>(std::ceil(keep_fraction * static_cast<double>(pairs.size())));
   if (keep < pairs.size()) {
-    std::nth_element(pairs.begin(), pairs.begin() + static_cast<std::ptrdiff_t>(keep), pairs.end(),
-                     [](const WarpPair& a, const WarpPair& b) {
-                       return a.distance2 < b.distance2 || (a.distance2 == b.distance2 && a.point < b.point);
-                     });
-    pairs.resize(keep);
-    std::sort(pairs.begin(), pairs.end(), [](const WarpPair& a, const WarpPair& b) { return a.point < b.point; });
+    // The first `keep` by (distance, point) are those before the one at `keep` in that order:
+    // find it, then filter in place (the points' order stays, no sort).
+    auto before = [](const WarpPair& a, const WarpPair& b) {
+      return a.distance2 < b.distance2 || (a.distance2 == b.distance2 && a.point < b.point);
+    };
+    std::vector<WarpPair> ranked(pairs);
+    std::nth_element(ranked.begin(), ranked.begin() + static_cast<std::ptrdiff_t>(keep), ranked.end(), before);
+    const WarpPair first_dropped = ranked[keep];
+    pairs.erase(std::remove_if(pairs.begin(), pairs.end(), [&](const WarpPair& p) { return !before(p, first_dropped); }), pairs.end());
   }
   return pairs;
 }
@@ -219,10 +223,13 @@ class WarpSystem {
     Eigen::VectorXd x(unknowns_);
     for (std::size_t k = 0; k < field.node_count(); ++k) x.segment<2>(static_cast<Eigen::Index>(2 * k)) = field.node_displacement(k);
     if (from_near_start) {
-      Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>> incomplete;
-      incomplete.compute(A);
-      if (incomplete.info() != Eigen::Success) return false;
-      if (conjugate_gradients(A, b, x, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(incomplete.solve(r)); }, kNearStartSteps) < 0) {
+      // One incomplete factor for all the fine solves: their systems differ in their pairs only.
+      if (!incomplete_ready_) {
+        incomplete_.compute(A);
+        if (incomplete_.info() != Eigen::Success) return false;
+        incomplete_ready_ = true;
+      }
+      if (conjugate_gradients(A, b, x, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(incomplete_.solve(r)); }, kNearStartSteps) < 0) {
         return false;
       }
     } else if (!(factored_ && within(conjugate_gradients(A, b, x, [&](const Eigen::VectorXd& r) { return Eigen::VectorXd(factor_.solve(r)); },
@@ -248,17 +255,20 @@ class WarpSystem {
                                          const WarpParams& params, Eigen::VectorXd& b) const {
     const std::size_t columns = static_cast<std::size_t>(field.columns());
     const std::size_t cells = (columns - 1) * static_cast<std::size_t>(field.rows() - 1);
-    std::vector<std::array<double, 64>> blocks(cells);
-    std::vector<std::uint8_t> used(cells, 0);
+    // Blocks only for the cells that hold pairs (a few hundred of a large grid's many thousand).
+    std::vector<std::int32_t> block_of(cells, -1);
+    std::vector<std::array<double, 64>> blocks;
     b = Eigen::VectorXd::Zero(unknowns_);
     const double w = params.point_spacing_m;
     for (const WarpPair& pair : pairs) {
       const Eigen::Vector2d& p = points[pair.point];
       const WarpField::Stencil s = field.stencil(p);
       const std::size_t cell = s.nodes[0] - s.nodes[0] / columns;  // i + j·(columns − 1)
-      auto& block = blocks[cell];
-      if (!used[cell]) block.fill(0.0);
-      used[cell] = 1;
+      if (block_of[cell] < 0) {
+        block_of[cell] = static_cast<std::int32_t>(blocks.size());
+        blocks.emplace_back().fill(0.0);
+      }
+      auto& block = blocks[static_cast<std::size_t>(block_of[cell])];
       const Eigen::Vector2d r0 = field.apply_rigid(p) - *pair.to;
       const Eigen::Vector2d& normal = dest.normal_at(pair.to);
       // Rows of the residuals in the cell's eight unknowns (node k, component c at 2k + c).
@@ -281,15 +291,16 @@ class WarpSystem {
       }
     }
     std::vector<Eigen::Triplet<double>> triplets;
-    triplets.reserve(64 * static_cast<std::size_t>(std::count(used.begin(), used.end(), std::uint8_t{1})));
+    triplets.reserve(64 * blocks.size());
     for (std::size_t cell = 0; cell < cells; ++cell) {
-      if (!used[cell]) continue;
+      if (block_of[cell] < 0) continue;
+      const auto& block = blocks[static_cast<std::size_t>(block_of[cell])];
       const std::size_t i = cell % (columns - 1), j = cell / (columns - 1);
       const std::array<std::size_t, 4> nodes = {j * columns + i, j * columns + i + 1, (j + 1) * columns + i,
                                                 (j + 1) * columns + i + 1};
       for (std::size_t a = 0; a < 8; ++a) {
         for (std::size_t c = 0; c < 8; ++c) {
-          const double v = blocks[cell][a * 8 + c];
+          const double v = block[a * 8 + c];
           if (v != 0.0) {
             triplets.emplace_back(static_cast<int>(2 * nodes[a / 2] + a % 2), static_cast<int>(2 * nodes[c / 2] + c % 2), v);
           }
@@ -339,6 +350,8 @@ class WarpSystem {
   Eigen::VectorXd rest_pull_;  ///< the rest term's right-hand side: rest weight × starting displacement
   Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>> factor_;
   bool factored_ = false;
+  Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>> incomplete_;
+  bool incomplete_ready_ = false;
 };
 
 /// The median and 95th percentile of `values` (NaN when empty); reorders them.
