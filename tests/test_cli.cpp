@@ -145,6 +145,15 @@ TEST_CASE("bad input: exit status 2 and a message naming the problem") {
   expect("generate " + dir + "/g --layout spiral", "--layout must be");
   expect("generate " + dir + "/g --explored 2", "explored_fraction");
   expect("generate " + dir + "/g --seed -4", "--seed must be a whole number");
+  // A resolution typo that would make the map wider than any building (1e300 for 0.05).
+  areamatch_test::write_bytes(dir + "/cli_huge.yaml", "image: cli_ok.pgm\nresolution: 1e300\norigin: [0, 0, 0]\n");
+  expect("info " + dir + "/cli_huge.yaml", "cli_huge.yaml: 2 cells of 1e+300 m make it");
+  expect("info " + dir + "/cli_ok.pgm --resolution 5000", "max_map_extent_m");
+  // A text file as a map: the loader's error alone, no note on what would have been assumed.
+  areamatch_test::write_bytes(dir + "/cli_text.png", "just some text\n");
+  const Run text = run("info " + dir + "/cli_text.png");
+  CHECK(text.status == 2);
+  CHECK(text.out.find("has no YAML") == std::string::npos);
   // A valid bare image with a resolution override works.
   CHECK(run("info " + dir + "/cli_ok.pgm --resolution 0.1").status == 0);
 }
@@ -191,7 +200,7 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
   for (std::uint16_t v : carried.values) labelled += v > 0;
   CHECK(labelled > carried.values.size() / 10);
   // No acceptable match: no label file, exit 1.
-  const Run refused = run("match " + pair + " --min-agreement 1.01 --labels " + dir + "/refused.png");
+  const Run refused = run("match " + pair + " --min-agreement 1 --labels " + dir + "/refused.png");
   CHECK(refused.status == 1);
   CHECK(refused.out.find("not written") != std::string::npos);
   CHECK_FALSE(std::filesystem::exists(dir + "/refused.png"));
@@ -230,13 +239,42 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   }
   CHECK(run("match " + dir + "/robot.yaml").status == 2);
   CHECK(run("match " + dir + "/missing.yaml " + dir + "/layout.yaml").status == 2);
-  // An all-wall map segments into nothing: a clear refusal, exit 1, JSON still on stdout.
-  areamatch::GreyImage walls(40, 40, 255, 0);
-  areamatch::write_image(dir + "/walls.png", walls);
-  const Run none = run("match " + dir + "/walls.png " + dir + "/layout.yaml --json");
+  // A map without free cells (all wall, all unknown, one pixel) is bad input: exit 2 naming the file.
+  areamatch::write_image(dir + "/walls.png", areamatch::GreyImage(40, 40, 255, 0));
+  areamatch::write_image(dir + "/unknown.png", areamatch::GreyImage(40, 40, 255, 205));
+  areamatch::write_image(dir + "/pixel.png", areamatch::GreyImage(1, 1, 255, 0));
+  for (const std::string name : {"walls.png", "unknown.png"}) {
+    const Run none = run("match " + dir + "/" + name + " " + dir + "/layout.yaml --json");
+    INFO(none.out);
+    CHECK(none.status == 2);
+    CHECK(none.out.find(name + ": the map has no free cells") != std::string::npos);
+  }
+  const Run pixel = run("match " + dir + "/layout.yaml " + dir + "/pixel.png");
+  INFO(pixel.out);
+  CHECK(pixel.status == 2);
+  CHECK(pixel.out.find("pixel.png") != std::string::npos);
+  // Free space too narrow for any area is still a map: no areas, exit 1, JSON on stdout.
+  areamatch::GreyImage slit(40, 40, 255, 0);
+  for (int x = 5; x < 35; ++x) slit.values[20 * 40 + x] = 254;  // one cell wide
+  areamatch::write_image(dir + "/slit.png", slit);
+  const Run none = run("match " + dir + "/slit.png " + dir + "/layout.yaml --json");
   CHECK(none.status == 1);
   CHECK(none.out.find("\"ok\": false") != std::string::npos);
   CHECK(none.out.find("no areas") != std::string::npos);
+  // Numbers out of their range, and a typo, name the option.
+  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+           {"--door-width 1e308", "--door-width must be at most 20 m"},
+           {"--source-resolution 1e-9", "robot.yaml: resolution 1e-09 m per cell is finer than areamatch::min_resolution_m"},
+           {"--min-agreement 5", "--min-agreement must be in [0, 1]"},
+           {"--min-p-correct -0.1", "--min-p-correct must be in [0, 1]"},
+           {"--min-score 1.5", "--min-score must be in [0, 1]"},
+           {"--alow-reflection", "unknown option --alow-reflection (did you mean --allow-reflection?)"}}) {
+    const Run r = run("match " + pair + " " + bad);
+    INFO(bad << " -> " << r.out);
+    CHECK(r.status == 2);
+    CHECK(r.out.find(message) != std::string::npos);
+  }
+  CHECK(run("match " + pair + " --zzzz").out.find("did you mean") == std::string::npos);
   // Another building's layout, which the model doubts: at --min-agreement 0 the agreement accepts
   // it alone only where the lower wall agreement is at most --gate-max-lower-walls (0: nowhere; above
   // 1: always).
@@ -576,7 +614,8 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
   REQUIRE(run("generate " + dir + "/a --seed 7 --width 18 --height 13 --rotation 60").status == 0);
   REQUIRE(run("generate " + dir + "/b --seed 8 --width 18 --height 13").status == 0);
   const std::string maps = dir + "/a/layout.yaml " + dir + "/a/robot.yaml";
-  const Run json = run("merge " + maps + " --json --out " + dir + "/merged.yaml --png " + dir + "/merged.png", false);
+  // --out into folders that do not exist yet: made before the work.
+  const Run json = run("merge " + maps + " --json --out " + dir + "/new/folder/merged.yaml --png " + dir + "/merged.png", false);
   INFO(json.out);
   CHECK(json.status == 0);
   CHECK(json.out.rfind("{\"ok\": true, \"reference\": \"" + dir + "/a/layout.yaml\"", 0) == 0);
@@ -586,10 +625,10 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
                           "\"timings\"", "\"prepare_s\"", "\"refine_s\"", "\"merge_s\""}) {
     CHECK_MESSAGE(json.out.find(key) != std::string::npos, key);
   }
-  const areamatch::OccupancyGrid merged = areamatch::load_map(dir + "/merged.yaml");
+  const areamatch::OccupancyGrid merged = areamatch::load_map(dir + "/new/folder/merged.yaml");
   CHECK(json.out.find("\"merged\": {\"width\": " + std::to_string(merged.width()) + ", \"height\": " +
                       std::to_string(merged.height())) != std::string::npos);
-  const Run info = run("info " + dir + "/merged.yaml");
+  const Run info = run("info " + dir + "/new/folder/merged.yaml");
   CHECK(info.status == 0);
   CHECK(info.out.find(std::to_string(merged.width()) + " x " + std::to_string(merged.height())) != std::string::npos);
   CHECK(areamatch::detail::read_file_bytes(dir + "/merged.png").size() > 0);

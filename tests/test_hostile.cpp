@@ -87,6 +87,21 @@ TEST_CASE("NaN, infinite, zero and negative parameters are refused with the para
   CHECK_THROWS_AS(OccupancyGrid(10, 10, 0.05, Pose2{std::nan(""), 0.0, 0.0}), parameter_error);
 }
 
+TEST_CASE("typos no building has: a resolution of 1e300 or 1e-9, a door width of 1e308, refused naming the limit") {
+  CHECK_THROWS_WITH_AS(OccupancyGrid(100, 100, 1e300), doctest::Contains("max_map_extent_m"), parameter_error);
+  CHECK_THROWS_WITH_AS(OccupancyGrid(100, 100, 1e-9), doctest::Contains("min_resolution_m"), parameter_error);
+  CHECK_NOTHROW(OccupancyGrid(39000, 100, 0.05));  // 1.95 km: under the widest map taken
+  OccupancyGrid grid(100, 100, 0.05);
+  CHECK_THROWS_WITH_AS(grid.set_resolution(30.0), doctest::Contains("max_map_extent_m"), parameter_error);
+  CHECK(grid.resolution() == 0.05);
+  LoadOptions options;
+  options.resolution = 1e-9;
+  CHECK_THROWS_WITH_AS(load_map("typo.png", options), doctest::Contains("typo.png: resolution 1e-09"), parameter_error);
+  VoronoiSegmenter segmenter;
+  segmenter.params.with_door_width(1e308);
+  CHECK_THROWS_WITH_AS(segmenter.segment(generate_building({}, 1).layout), doctest::Contains("up to 20"), parameter_error);
+}
+
 TEST_CASE("resource limits: too many Voronoi sites or areas is a limit_error naming the limit") {
   const auto building = generate_building({}, 4);
   VoronoiSegmenter segmenter;

@@ -100,9 +100,37 @@ std::vector<std::string> assumed_defaults(const std::string& path, const areamat
 
 /// Says on stderr which defaults a bare image is read with (a map matched at a wrong scale
 /// fails silently otherwise). `resolution_flag` names the option that sets its resolution.
+/// Makes the folders the output files named by `names` go into, before any work: a missing folder
+/// is created, one that cannot be is a usage error naming the option — not a failure after the work.
+void make_output_folders(const Args& args, std::initializer_list<const char*> names) {
+  for (const char* name : names) {
+    const auto path = args.text(name);
+    if (!path) continue;
+    const std::filesystem::path folder = std::filesystem::path(*path).parent_path();
+    if (folder.empty()) continue;
+    std::error_code ec;
+    std::filesystem::create_directories(folder, ec);
+    if (ec || !std::filesystem::is_directory(folder)) {
+      throw UsageError("--" + std::string(name) + " " + *path + ": cannot make its folder " + folder.string() +
+                       (ec ? " (" + ec.message() + ")" : std::string()));
+    }
+  }
+}
+
+/// Whether `path` starts as a PNG or a PGM does: a file that does not is reported by the loader
+/// alone, without a note on what would have been assumed for it.
+bool starts_like_an_image(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  char head[4] = {0, 0, 0, 0};
+  in.read(head, 4);
+  const bool png = head[0] == '\x89' && head[1] == 'P' && head[2] == 'N' && head[3] == 'G';
+  const bool pgm = head[0] == 'P' && (head[1] == '2' || head[1] == '5');
+  return png || pgm;
+}
+
 void note_assumed_defaults(const std::string& path, const areamatch::LoadOptions& options, const std::string& resolution_flag) {
   const auto assumed = assumed_defaults(path, options);
-  if (assumed.empty()) return;
+  if (assumed.empty() || !starts_like_an_image(path)) return;
   std::string what;
   for (const auto& a : assumed) {
     const std::string part = a == "resolution"  ? "0.05 m per pixel"
@@ -346,6 +374,17 @@ std::string generate_pair(const std::string& out, const std::string& prefix, std
   return entry.str();
 }
 
+/// A door width option: positive, and no wider than a door or junction can be
+/// (`RoomParams::max_door_width_m`): 1e308 is a typo, not a setting.
+std::optional<double> door_width(const Args& args, const std::string& name) {
+  const auto width = args.number(name, true);
+  if (width && *width > areamatch::RoomParams::max_door_width_m) {
+    throw UsageError("--" + name + " must be at most " + areamatch::detail::format_fixed(areamatch::RoomParams::max_door_width_m, 0) +
+                     " m (a door or junction, not a hall), got " + *args.text(name));
+  }
+  return width;
+}
+
 int run_generate(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"mirror", "binary", "help"},
                   merged(kLidarOptions, {"seed", "count", "width", "height", "layout", "door-width", "rotation", "robot-resolution",
@@ -377,7 +416,7 @@ int run_generate(const std::vector<std::string>& tokens) {
   const double layout_line_width_m = handheld ? 0.05 : 0.0;
   building_params.width_m = args.number("width", true).value_or(30.0);
   building_params.height_m = args.number("height", true).value_or(20.0);
-  building_params.door_width_m = args.number("door-width", true).value_or(0.9);
+  building_params.door_width_m = door_width(args, "door-width").value_or(0.9);
   building_params.layout = parse_layout(args.text("layout").value_or("auto"));
   areamatch::RobotMapParams robot_params;
   if (handheld) {
@@ -437,7 +476,7 @@ int run_simulate(const std::vector<std::string>& tokens) {
   auto params = lidar_params_from(args);
   const auto first_seed = static_cast<std::uint64_t>(args.integer("seed", 0, 1LL << 62).value_or(1));
   const auto count = args.integer("count", 1, 10000);
-  const auto door_width = args.number("door-width", true);
+  const auto door = door_width(args, "door-width");
   const auto rotation_deg = args.number("rotation");
   const auto options = load_options(args);
   note_assumed_defaults(plan_path, options, "--resolution");
@@ -456,7 +495,7 @@ int run_simulate(const std::vector<std::string>& tokens) {
     std::cout << "wrote " << out << "/" << name << ".png: " << map.grid.width() << "x" << map.grid.height() << ", " << map.scans
               << " scans, bend " << format_fixed(map.bend_m, 2) << " m" << (map.broken ? ", broken piece" : "") << "\n";
     entries.push_back(simulated_entry(std::filesystem::path(plan_path).stem().string() + "_" + name, name + ".yaml", destination,
-                                      map, params.resolution_m / plan.resolution(), door_width));
+                                      map, params.resolution_m / plan.resolution(), door));
   }
   areamatch::write_text_file(out + "/pairs.json",
                              manifest_of(entries, "Simulated laser-SLAM maps written by 'areamatch simulate'.", 1.0));
@@ -487,7 +526,7 @@ const char* kSegmentHelp =
 
 areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& door_option = "door-width") {
   areamatch::VoronoiSegmenter segmenter;
-  if (const auto door = args.number(door_option, true)) segmenter.params.with_door_width(*door);
+  if (const auto door = door_width(args, door_option)) segmenter.params.with_door_width(*door);
   if (const auto area = args.number("min-area", false, true)) segmenter.params.areas.min_area_m2 = *area;
   if (const auto margin = args.number("room-margin", false, true)) segmenter.params.rooms.room_margin_m = *margin;
   if (const auto tolerance = args.number("simplify", false, true)) segmenter.params.boundary.simplify_tolerance_m = *tolerance;
@@ -511,6 +550,7 @@ int run_segment(const std::vector<std::string>& tokens) {
     std::cout << kSegmentHelp << kMapOptionsHelp;
     return 0;
   }
+  make_output_folders(args, {"png", "svg", "labels", "json"});
   args.expect_positional(1, "MAP");
   const auto segmenter = segmenter_from(args);
   const auto options = load_options(args);
@@ -580,15 +620,15 @@ areamatch::MapPairOptions map_pair_options(const Args& args) {
   areamatch::MapPairOptions options;
   options.source_load.resolution = args.number("source-resolution", /*positive=*/true);
   options.dest_load.resolution = args.number("dest-resolution", /*positive=*/true);
-  const auto door = args.number("door-width", true);
-  options.source_door_width_m = door ? door : args.number("source-door-width", true);
-  options.dest_door_width_m = door ? door : args.number("dest-door-width", true);
+  const auto door = door_width(args, "door-width");
+  options.source_door_width_m = door ? door : door_width(args, "source-door-width");
+  options.dest_door_width_m = door ? door : door_width(args, "dest-door-width");
   if (const auto k = args.integer("k", 1, 1000)) options.k = static_cast<std::size_t>(*k);
-  options.min_score = args.number("min-score", false, true);
-  options.min_agreement = args.number("min-agreement", false, true);
+  options.min_score = args.fraction("min-score");
+  options.min_agreement = args.fraction("min-agreement");
   options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
   options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
-  options.min_p_correct = args.number("min-p-correct", false, true);
+  options.min_p_correct = args.fraction("min-p-correct");
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
@@ -615,6 +655,7 @@ int run_match(const std::vector<std::string>& tokens) {
     std::cout << kMatchHelp;
     return 0;
   }
+  make_output_folders(args, {"png", "svg", "labels"});
   args.expect_positional(2, "SOURCE DEST");
   const areamatch::MapPairOptions options = map_pair_options(args);
 
@@ -727,6 +768,7 @@ int run_warp(const std::vector<std::string>& tokens) {
     std::cout << kWarpHelp;
     return 0;
   }
+  make_output_folders(args, {"out", "grid"});
   args.expect_positional(2, "SOURCE DEST");
   const areamatch::MapPairOptions options = map_pair_options(args);
   areamatch::WarpParams warp_params;
@@ -857,6 +899,7 @@ int run_assess(const std::vector<std::string>& tokens) {
     std::cout << kAssessHelp;
     return 0;
   }
+  make_output_folders(args, {"png"});
   args.expect_positional(2, "MAP REFERENCE");
   const areamatch::MapPairOptions options = map_pair_options(args);
   if (options.estimate_scale) {
@@ -936,6 +979,7 @@ int run_merge(const std::vector<std::string>& tokens) {
     std::cout << kMergeHelp;
     return 0;
   }
+  make_output_folders(args, {"out", "png"});
   const std::vector<std::string>& paths = args.positional();
   if (paths.size() < 2) throw UsageError("expected at least two maps: MAP MAP...");
   namespace fs = std::filesystem;
@@ -973,12 +1017,12 @@ int run_merge(const std::vector<std::string>& tokens) {
   // The matcher's options as `areamatch match` sets them (its threads stay 1: merging spreads pairs).
   areamatch::MapPairOptions match_options;
   match_options.allow_reflection = args.flag("allow-reflection");
-  match_options.min_agreement = args.number("min-agreement", false, true);
+  match_options.min_agreement = args.fraction("min-agreement");
   match_options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
   match_options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
-  match_options.min_p_correct = args.number("min-p-correct", false, true);
+  match_options.min_p_correct = args.fraction("min-p-correct");
   areamatch::Matcher<> matcher;
-  matcher.segmenter = areamatch::detail::segmenter_with_door(matcher.segmenter, args.number("door-width", true));
+  matcher.segmenter = areamatch::detail::segmenter_with_door(matcher.segmenter, door_width(args, "door-width"));
   areamatch::detail::apply_match_options(matcher.params, match_options);
 
   for (const auto& path : paths) note_assumed_defaults(path, {}, "");
@@ -1117,11 +1161,11 @@ int run_eval(const std::vector<std::string>& tokens) {
   options.matching.paper = args.flag("paper");
   options.matching.allow_reflection = !args.flag("no-reflection");
   if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
-  options.matching.min_score = args.number("min-score", false, true);
-  options.matching.min_agreement = args.number("min-agreement", false, true);
+  options.matching.min_score = args.fraction("min-score");
+  options.matching.min_agreement = args.fraction("min-agreement");
   options.matching.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
   options.matching.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
-  options.matching.min_p_correct = args.number("min-p-correct", false, true);
+  options.matching.min_p_correct = args.fraction("min-p-correct");
   options.matching.estimate_scale = args.flag("estimate-scale");
   options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);
   const auto picture_scale = args.integer("picture-scale", 1, 100);
@@ -1234,12 +1278,13 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     std::cout << kCalibrateHelp;
     return 0;
   }
+  make_output_folders(args, {"svg", "predictions"});
   if (args.positional().empty()) throw UsageError("expected at least one RESULTS.csv");
   const double l2 = args.number("l2", true).value_or(1.0);
   areamatch::DecisionParams base;
-  base.accept_p_correct = args.number("accept-p", false, true).value_or(base.accept_p_correct);
+  base.accept_p_correct = args.fraction("accept-p").value_or(base.accept_p_correct);
   base.validate();
-  const double gate = args.number("min-agreement", false, true).value_or(areamatch::MatcherParams{}.min_agreement);
+  const double gate = args.fraction("min-agreement").value_or(areamatch::MatcherParams{}.min_agreement);
   const double gate_walls =
       args.number("gate-max-lower-walls", false, true).value_or(areamatch::MatcherParams{}.gate_max_lower_walls);
   const double gate_overlap =

@@ -5,6 +5,7 @@
 
 #include <areamatch/error.hpp>
 
+#include <algorithm>
 #include <cerrno>
 #include <cmath>
 #include <cstdlib>
@@ -20,6 +21,36 @@ namespace areamatch_cli {
 struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
+
+/// Edit distance (insertions, deletions, substitutions) between two option names.
+inline std::size_t edit_distance(const std::string& a, const std::string& b) {
+  std::vector<std::size_t> row(b.size() + 1);
+  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
+  for (std::size_t i = 1; i <= a.size(); ++i) {
+    std::size_t diagonal = row[0];
+    row[0] = i;
+    for (std::size_t j = 1; j <= b.size(); ++j) {
+      const std::size_t above = row[j];
+      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
+      diagonal = above;
+    }
+  }
+  return row[b.size()];
+}
+
+/// " (did you mean --NAME?)" for the known name nearest to `name`, when it is a typo away (at most
+/// a quarter of its letters, and at least one, differ); else "".
+inline std::string did_you_mean(const std::string& name, const std::set<std::string>& flags, const std::set<std::string>& options) {
+  std::string best;
+  std::size_t best_distance = std::max<std::size_t>(1, name.size() / 4) + 1;
+  for (const auto* names : {&flags, &options}) {
+    for (const std::string& known : *names) {
+      const std::size_t d = edit_distance(name, known);
+      if (d < best_distance) best = known, best_distance = d;
+    }
+  }
+  return best.empty() ? std::string() : " (did you mean --" + best + "?)";
+}
 
 class Args {
  public:
@@ -46,7 +77,7 @@ class Args {
           }
           values_[name] = value;
         } else {
-          throw UsageError("unknown option --" + name);
+          throw UsageError("unknown option --" + name + did_you_mean(name, flags, options));
         }
       } else if (t == "-h") {
         flags_.insert("help");
@@ -77,6 +108,13 @@ class Args {
     }
     if (positive && !(v > 0.0)) throw UsageError("--" + name + " must be positive, got " + *t);
     if (non_negative && v < 0.0) throw UsageError("--" + name + " must not be negative, got " + *t);
+    return v;
+  }
+
+  /// A number in [0, 1] (a share or a probability).
+  std::optional<double> fraction(const std::string& name) const {
+    const auto v = number(name);
+    if (v && !(*v >= 0.0 && *v <= 1.0)) throw UsageError("--" + name + " must be in [0, 1] (a share), got " + *text(name));
     return v;
   }
 

@@ -16,14 +16,17 @@
 ///   A ROS `nav_msgs/OccupancyGrid` stores rows bottom to top: see `ros_data_index`.
 
 #include "detail/blocks.hpp"
+#include "detail/format.hpp"
 #include "error.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <limits>
 #include <string>
 #include <vector>
@@ -64,11 +67,39 @@ struct CellCounts {
   std::size_t total() const { return free + occupied + unknown; }
 };
 
-/// Throws `parameter_error` unless `resolution` is a positive finite number of metres per cell.
+/// The finest resolution areamatch takes, metres per cell. The segmenter's clearances span at
+/// most 249 cells (0.25 m: 125 cells at 2 mm), and a finer map of a building would not fit in
+/// memory: a resolution below this is a typo (1e-9 for 0.05), not a map.
+inline constexpr double min_resolution_m = 0.002;
+
+/// Throws `parameter_error` unless `resolution` is a finite number of metres per cell of at
+/// least `min_resolution_m`.
 inline void check_resolution(double resolution, const std::string& what = "resolution") {
   if (!(std::isfinite(resolution) && resolution > 0.0)) {
     throw parameter_error(what + " must be a positive finite number of metres per cell, got " +
                           std::to_string(resolution));
+  }
+  if (resolution < min_resolution_m) {
+    throw parameter_error(what + " " + detail::format_double(resolution) + " m per cell is finer than areamatch::min_resolution_m (" +
+                          detail::format_double(min_resolution_m) + " m); is it right?");
+  }
+}
+
+/// The widest map areamatch takes, metres, either way: a floor, a building, a campus's few buildings.
+/// A map wider than this is a resolution typo (1e300 for 0.05) more often than a map, and the
+/// lookups sized in metres could not be allocated for it.
+inline constexpr double max_map_extent_m = 2000.0;
+
+/// Throws `parameter_error` when a width × height grid of `resolution` would be wider than
+/// `max_map_extent_m` either way.
+inline void check_extent(int width, int height, double resolution, const std::string& what = "map") {
+  const double extent = std::max(width, height) * resolution;
+  if (!(extent <= max_map_extent_m)) {
+    char across[32];
+    std::snprintf(across, sizeof across, "%.3g", extent);
+    throw parameter_error(what + ": " + std::to_string(std::max(width, height)) + " cells of " + detail::format_double(resolution) +
+                          " m make it " + across + " m across, more than areamatch::max_map_extent_m (" +
+                          detail::format_fixed(max_map_extent_m, 0) + " m); is the resolution (metres per cell) right?");
   }
 }
 
@@ -87,6 +118,7 @@ class OccupancyGrid {
                             std::to_string(height));
     }
     check_resolution(resolution);
+    check_extent(width, height, resolution);
     if (!std::isfinite(origin.x) || !std::isfinite(origin.y) || !std::isfinite(origin.yaw)) {
       throw parameter_error("grid origin must be finite");
     }
@@ -101,6 +133,7 @@ class OccupancyGrid {
 
   void set_resolution(double resolution) {
     check_resolution(resolution);
+    check_extent(width_, height_, resolution);
     resolution_ = resolution;
   }
   void set_origin(const Pose2& origin) { origin_ = origin; }

@@ -81,7 +81,7 @@ inline LoadedMap load_map_with_image(const std::string& path, const LoadOptions&
   if (options.free_thresh) loaded.thresholds.free_thresh = *options.free_thresh;
   if (options.occupied_thresh) loaded.thresholds.occupied_thresh = *options.occupied_thresh;
   if (options.negate) loaded.thresholds.negate = *options.negate;
-  check_resolution(resolution);
+  check_resolution(resolution, path + ": resolution");
   loaded.thresholds.validate();
 
   try {
@@ -92,6 +92,7 @@ inline LoadedMap load_map_with_image(const std::string& path, const LoadOptions&
     if (dynamic_cast<const format_error*>(&e)) throw format_error(std::string(e.what()) + " (image of " + path + ")");
     throw io_error(std::string(e.what()) + " (image of " + path + ")");
   }
+  check_extent(loaded.image.width, loaded.image.height, resolution, path);
   loaded.grid = grid_from_image(loaded.image, loaded.thresholds, resolution, origin);
   return loaded;
 }

@@ -139,13 +139,22 @@ MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid
 
 /// Loads, segments and matches `source_path` onto `dest_path` with `matcher` (any `Matcher<...>`:
 /// its segmenter and parameters, then what `options` sets; `options.paper` is not used). Throws
-/// what `load_map` and the segmenter throw on bad input, and `parameter_error` for a door width
+/// what `load_map` and the segmenter throw on bad input, `format_error` for a map without free
+/// cells, and `parameter_error` for a door width
 /// with a segmenter other than `VoronoiSegmenter`; "no acceptable match" is `result.ok == false`.
 template <class M>
 MapPairRun match_map_files(const M& matcher, const std::string& source_path, const std::string& dest_path,
                            const MapPairOptions& options = {}) {
   return detail::run_map_pair(matcher, options, [&](std::size_t i) {
-    return load_map(i == 0 ? source_path : dest_path, i == 0 ? options.source_load : options.dest_load);
+    const std::string& path = i == 0 ? source_path : dest_path;
+    OccupancyGrid grid = load_map(path, i == 0 ? options.source_load : options.dest_load);
+    // A map without free space (all unknown, all wall, one pixel) is bad input, not a pair that
+    // does not match.
+    if (grid.count().free == 0) {
+      throw format_error(path + ": the map has no free cells (" + std::to_string(grid.width()) + " x " + std::to_string(grid.height()) +
+                         " cells, all unknown or occupied): nothing to match; check the image and its free_thresh / negate");
+    }
+    return grid;
   });
 }
 

@@ -90,7 +90,8 @@ struct MatcherParams {
   /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): every true pair
   /// scored 0.840 or more; 2 of 2876 pairs of different buildings scored above 0.835 (at most 0.845).
   /// Alone it rejects right answers of unseen buildings and hand-held scans (agreement 0.77-0.83):
-  /// `decision.accept_p_correct` lets the calibrated model accept those.
+  /// `decision.accept_p_correct` lets the calibrated model accept those. Above 1 the gate never
+  /// accepts and the model alone decides (the CLI takes [0, 1]: 1 is that, but for a perfect agreement).
   double min_agreement = 0.835;
   /// The agreement gate (`min_agreement`) accepts an answer the model is not sure of only where
   /// the lower of the two wall agreements (`MatchEvidence::forward_wall_agreement` and

@@ -17,6 +17,7 @@
 /// Everything is in pixel-corner lattice units; parameters are in metres.
 
 #include "../detail/adjacency.hpp"
+#include "../detail/format.hpp"
 #include "../error.hpp"
 #include "../transform.hpp"
 #include "skeleton.hpp"
@@ -35,6 +36,9 @@ struct RoomParams {
   /// The widest opening that still separates two areas (the paper's segmentation width). An
   /// opening measured up to one grid cell wider still counts, so a door of exactly W does.
   double door_width_m = 1.2;
+  /// The door width's upper bound: an opening wider than this is no door or junction but a hall,
+  /// and a door width this large joins whole floors into one area (a typo, not a setting).
+  static constexpr double max_door_width_m = 20.0;
   /// A wide part is a room only if its clearance exceeds W/2 by this much somewhere.
   double room_margin_m = 0.05;
   /// Narrow parts longer than this (or branching) are areas of their own (narrow corridors).
@@ -52,8 +56,9 @@ struct RoomParams {
   double junction_arm_elongation = 5.0;
 
   void validate() const {
-    if (!(std::isfinite(door_width_m) && door_width_m > 0.0)) {
-      throw parameter_error("door width must be a positive number of metres, got " + std::to_string(door_width_m));
+    if (!(std::isfinite(door_width_m) && door_width_m > 0.0 && door_width_m <= max_door_width_m)) {
+      throw parameter_error("door width must be a positive number of metres up to " + detail::format_fixed(max_door_width_m, 0) +
+                            " (a door or junction, not a hall), got " + detail::format_double(door_width_m));
     }
     detail::require_non_negative(room_margin_m, "RoomParams::room_margin_m");
     detail::require_non_negative(narrow_corridor_length_m, "RoomParams::narrow_corridor_length_m");
