@@ -176,6 +176,13 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
   const Run pictures = run("match " + pair + " --allow-reflection --png " + dir + "/m.png --svg " + dir + "/m.svg");
   CHECK(pictures.status == 0);
   CHECK(pictures.out.find("matched: rotation") != std::string::npos);
+  CHECK(pictures.out.find("accepted: p_correct") != std::string::npos);  // why, with the deciding number
+  // The mirrored pair without --allow-reflection: rejected, and the rejection names the flag.
+  const Run unmirrored = run("match " + pair + " --door-width 1.2");
+  INFO(unmirrored.out);
+  CHECK(unmirrored.status == 1);
+  CHECK(unmirrored.out.find("try --allow-reflection") != std::string::npos);
+  CHECK(unmirrored.out.find("try --door-width") == std::string::npos);  // given
   CHECK(areamatch::detail::read_file_bytes(dir + "/m.png").size() > 0);
   CHECK(areamatch::detail::read_file_bytes(dir + "/m.svg").size() > 0);
   // The paper's matching as written (it loses real pairs, docs/evaluation.md) finds this clean one.
@@ -284,7 +291,10 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   const Run gated = run("match " + cross + " --gate-max-lower-walls 0");
   CHECK(gated.status == 1);
   CHECK(gated.out.find("gate_max_lower_walls") != std::string::npos);
-  CHECK(run("match " + cross + " --gate-max-lower-walls 2").status == 0);
+  const Run by_agreement = run("match " + cross + " --gate-max-lower-walls 2");
+  CHECK(by_agreement.status == 0);
+  CHECK(by_agreement.out.find("accepted by the agreement: agreement ") != std::string::npos);
+  CHECK(by_agreement.out.find("the model alone would not have accepted it") != std::string::npos);
 }
 
 TEST_CASE("warp: points carried across line for line, a resampled map, JSON; bad input exits 2, no match exits 1") {

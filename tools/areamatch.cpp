@@ -636,6 +636,32 @@ areamatch::MapPairOptions map_pair_options(const Args& args) {
   return options;
 }
 
+/// Why an answer was accepted, with the deciding number: the model, or the agreement gate (which
+/// accepts what the model underrates).
+std::string acceptance_line(const areamatch::MatchResult& result, const areamatch::MapPairOptions& options) {
+  areamatch::MatcherParams params = options.paper ? areamatch::PaperMatcher{}.params : areamatch::Matcher<>{}.params;
+  areamatch::detail::apply_match_options(params, options);
+  if (result.p_correct >= params.decision.accept_p_correct) {
+    return "accepted: p_correct " + format_fixed(result.p_correct, 3) + " >= " + format_double(params.decision.accept_p_correct);
+  }
+  return "accepted by the agreement: agreement " + format_fixed(result.evidence.agreement, 3) + " >= --min-agreement " +
+         format_double(params.min_agreement) + " (p_correct " + format_fixed(result.p_correct, 3) + " is below " +
+         format_double(params.decision.accept_p_correct) + ": the model alone would not have accepted it)";
+}
+
+/// What a user can try after a rejection, from the options that were not given.
+std::vector<std::string> rejection_hints(const areamatch::MapPairOptions& options) {
+  std::vector<std::string> hints;
+  if (!options.allow_reflection) {
+    hints.push_back("mirrored answers were not tried: if one map may be mirrored (its y axis flipped), try --allow-reflection");
+  }
+  if (!options.source_door_width_m && !options.dest_door_width_m) {
+    hints.push_back("both maps were segmented with the default door width: if their rooms split differently, try --door-width W "
+                    "(the widest door, metres)");
+  }
+  return hints;
+}
+
 const std::string kMatchHelp =
     std::string("usage: areamatch match SOURCE DEST [options]\n"
                 "Finds the transform that lays map SOURCE onto map DEST (both ROS YAML, PNG or PGM).\n"
@@ -647,7 +673,13 @@ const std::string kMatchHelp =
     "  --svg OUT.svg           DEST with matched areas tinted and SOURCE's walls as vectors\n"
     "  --labels OUT.png        16-bit PNG the size of SOURCE: each pixel of a SOURCE area holds the id + 1 of\n"
     "                          the DEST area it corresponds to (0: none), to carry room labels over;\n"
-    "                          written only when matched. The JSON lists the pairs with their local transforms\n";
+    "                          written only when matched. The JSON lists the pairs with their local transforms\n"
+    "What the output's numbers mean:\n"
+    "  agreement   how well the two maps agree under the answer, 0-1: the walls each way and the shared free space\n"
+    "  p_correct   the calibrated probability that the answer is right (a model fitted on real and generated pairs)\n"
+    "  confidence  the score's margin over the best answer that differs (another turn or place); small: ambiguous\n"
+    "An answer is accepted when p_correct >= 0.85, or when the agreement passes --min-agreement where the model\n"
+    "underrates cluttered maps; the output says which.\n";
 
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, merged(kPairFlags, {"json"}), merged(kPairOptions, {"png", "svg", "labels"}));
@@ -698,8 +730,10 @@ int run_match(const std::vector<std::string>& tokens) {
   }
   if (!result.ok) {
     std::cerr << "areamatch match: no acceptable match: " << result.reason << "\n";
+    for (const std::string& hint : rejection_hints(options)) std::cerr << "areamatch match: " << hint << "\n";
     return 1;
   }
+  if (!args.flag("json")) std::cout << acceptance_line(result, options) << "\n";
   return 0;
 }
 
