@@ -35,6 +35,27 @@ from ._core import (  # noqa: F401
 from . import ros, synthetic  # noqa: F401
 
 
+def _takes_maps(function, names):
+    """`function` with a clear TypeError when a path is passed where it takes a Map."""
+    import functools
+    import os
+
+    @functools.wraps(function)
+    def checked(*args, **kwargs):
+        given = list(args[:len(names)]) + [kwargs[n] for n in names if n in kwargs]
+        for value in given:
+            if isinstance(value, (str, bytes, os.PathLike)):
+                raise TypeError(f"areamatch.{function.__name__} takes Maps, not paths: load it first, "
+                                f"areamatch.load_map({value!r})")
+        return function(*args, **kwargs)
+    return checked
+
+
+match = _takes_maps(match, ("source", "dest"))
+segment = _takes_maps(segment, ("map",))
+assess = _takes_maps(assess, ("map", "reference"))
+
+
 def _from_dict(key, doc):
     return property(lambda self: self.to_dict()[key], doc=doc)
 

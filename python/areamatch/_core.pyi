@@ -1,5 +1,6 @@
 # Type stubs of the compiled module (python/src/module.cpp), so editors complete the API.
-from typing import Any, Dict, List, Optional, Sequence, Tuple, overload
+import os
+from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -37,7 +38,7 @@ class Map:
     def __eq__(self, other: object) -> bool: ...
     def __ne__(self, other: object) -> bool: ...
 
-def load_map(path: str, resolution: Optional[float] = ..., free_thresh: Optional[float] = ...,
+def load_map(path: Union[str, os.PathLike[str]], resolution: Optional[float] = ..., free_thresh: Optional[float] = ...,
              occupied_thresh: Optional[float] = ..., negate: Optional[bool] = ...) -> Map: ...
 
 class Passage:

@@ -14,6 +14,7 @@
 #include <pybind11/operators.h>
 #include <pybind11/pybind11.h>
 #include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
 
 #include <cmath>
 #include <cstdint>
@@ -382,19 +383,19 @@ PYBIND11_MODULE(_core, m) {
 
   m.def(
       "load_map",
-      [](const std::string& path, std::optional<double> resolution, std::optional<double> free_thresh,
+      [](const std::filesystem::path& path, std::optional<double> resolution, std::optional<double> free_thresh,
          std::optional<double> occupied_thresh, std::optional<bool> negate) {
         am::LoadOptions o;
         o.resolution = resolution;
         o.free_thresh = free_thresh;
         o.occupied_thresh = occupied_thresh;
         o.negate = negate;
-        return am::load_map(path, o);
+        return am::load_map(path.string(), o);
       },
       py::arg("path"), py::arg("resolution") = py::none(), py::arg("free_thresh") = py::none(),
       py::arg("occupied_thresh") = py::none(), py::arg("negate") = py::none(), release_gil(),
-      "Loads a ROS map_server YAML or a bare PNG/PGM (then 0.05 m per pixel and map_server's thresholds unless "
-      "given). Keywords override what the YAML says.");
+      "Loads a ROS map_server YAML or a bare PNG/PGM (a str or a path-like object; then 0.05 m per pixel and "
+      "map_server's thresholds unless given). Keywords override what the YAML says.");
 
   // ------------------------------------------------------------------------------ AreaGraph
   py::class_<am::Passage>(m, "Passage", "An opening (door or junction) between two areas, metres.")

@@ -104,3 +104,20 @@ def test_load_errors(tmp_path):
     with pytest.raises(ValueError, match="resolution"):
         areamatch.load_map(str(tmp_path / "ok.pgm"), resolution=0.0)
     assert areamatch.load_map(str(tmp_path / "ok.pgm"), resolution=0.1).resolution == 0.1
+
+
+def test_paths_and_maps(tmp_path):
+    # load_map takes a pathlib.Path as well as a str; match, segment and assess take Maps, and a
+    # path passed to them says how to load it.
+    Map.from_array(np.full((8, 8), 254, np.uint8), 0.05).save(str(tmp_path / "ok.pgm"))
+    loaded = areamatch.load_map(tmp_path / "ok.pgm")
+    assert loaded == areamatch.load_map(str(tmp_path / "ok.pgm"))
+    with pytest.raises(TypeError, match=r"takes Maps, not paths: load it first, areamatch.load_map\('a.yaml'\)"):
+        areamatch.match("a.yaml", loaded)
+    with pytest.raises(TypeError, match="areamatch.match takes Maps"):
+        areamatch.match(loaded, dest=tmp_path / "ok.pgm")
+    with pytest.raises(TypeError, match="areamatch.segment takes Maps"):
+        areamatch.segment("a.yaml")
+    with pytest.raises(TypeError, match="areamatch.assess takes Maps"):
+        areamatch.assess(loaded, "b.yaml")
+    assert areamatch.match.__doc__ == areamatch._core.match.__doc__
