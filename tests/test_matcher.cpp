@@ -931,3 +931,37 @@ TEST_CASE("every clusterer with every selection, through the same synthetic case
     CHECK(angular_largest >= 1);
   }
 }
+
+TEST_CASE("a rejected match's picture says so in a red band above it; an accepted one has none") {
+  const OccupancyGrid layout = generate_building({}, 3).layout;
+  const AreaGraph graph = VoronoiSegmenter{}.segment(layout);
+  MatchResult result;
+  result.ok = true;
+  const RgbImage accepted = render_match(layout, graph, layout, graph, result);
+  result.ok = false;
+  result.reason = "the maps agree too little under the best transform to be the same building: agreement 0.747 < "
+                  "min_agreement 0.835 (the destination's walls near the source's free space explained: 0.810)";
+  const RgbImage rejected = render_match(layout, graph, layout, graph, result);
+  CHECK(rejected.width == accepted.width);
+  const int band = rejected.height - accepted.height;
+  REQUIRE(band > 0);
+  auto pixel = [](const RgbImage& image, int c, int r) {
+    const std::uint8_t* p = &image.rgb[(static_cast<std::size_t>(r) * image.width + c) * 3];
+    return std::array<int, 3>{p[0], p[1], p[2]};
+  };
+  CHECK(pixel(rejected, 0, 0) == std::array<int, 3>{190, 30, 30});
+  int letters = 0;
+  for (int r = 0; r < band; ++r) {
+    for (int c = 0; c < rejected.width; ++c) letters += pixel(rejected, c, r) == std::array<int, 3>{255, 255, 255};
+  }
+  CHECK(letters > 100);
+  bool same_below = true;
+  for (int r = 0; r < accepted.height && same_below; ++r) {
+    for (int c = 0; c < accepted.width; ++c) same_below = same_below && pixel(rejected, c, r + band) == pixel(accepted, c, r);
+  }
+  CHECK(same_below);
+  // A picture too narrow for the reason: cut, never past the edge.
+  const RgbImage narrow = with_rejection_banner(RgbImage(30, 10), result.reason);
+  CHECK(narrow.width == 30);
+  CHECK(narrow.height > 10);
+}

@@ -4,6 +4,7 @@
 /// `areamatch::io` target: see io/svg.hpp and io/png.hpp.
 
 #include "area_graph.hpp"
+#include "detail/tiny_font.hpp"
 #include "grid.hpp"
 #include "image.hpp"
 #include "match/result.hpp"
@@ -15,6 +16,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <string>
 #include <vector>
 
 namespace areamatch {
@@ -233,12 +235,38 @@ inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, const 
   return out;
 }
 
+/// `picture` below a red band that reads "REJECTED: " and the first words of `reason` (up to its
+/// first parenthesis, cut at a word to fit the width): the overlay of a rejected match shows a
+/// transform nobody should use, and must not be mistaken for an answer.
+inline RgbImage with_rejection_banner(const RgbImage& picture, const std::string& reason) {
+  const int scale = std::max(2, picture.width / 400);
+  const std::size_t fits = static_cast<std::size_t>(std::max(1, (picture.width - 4 * scale) / (4 * scale)));
+  std::string text = "REJECTED: " + reason.substr(0, reason.find(" ("));
+  if (text.size() > fits) {
+    const std::size_t cut = text.rfind(' ', fits > 3 ? fits - 3 : 0);
+    text = text.substr(0, cut == std::string::npos || cut < 9 ? fits : cut) + "...";
+    if (text.size() > fits) text.resize(fits);
+  }
+  const int band = 9 * scale;
+  RgbImage out(picture.width, picture.height + band, 190, 30, 30);
+  for (int r = 0; r < picture.height; ++r) {
+    for (int c = 0; c < picture.width; ++c) {
+      const std::uint8_t* p = &picture.rgb[(static_cast<std::size_t>(r) * picture.width + c) * 3];
+      out.set(c, r + band, p[0], p[1], p[2]);
+    }
+  }
+  detail::draw_tiny_text(out, 2 * scale, 2 * scale, text, scale, 255, 255, 255);
+  return out;
+}
+
 /// The picture `areamatch match --png` and `areamatch eval` write: the source with matched areas
-/// tinted, beside the destination with the source's walls laid over it.
+/// tinted, beside the destination with the source's walls laid over it; a rejected match under
+/// a red band saying so (`with_rejection_banner`).
 inline RgbImage render_match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
                              const AreaGraph& dest_graph, const MatchResult& result, const MapColors& colors = {}) {
-  return side_by_side(render_match_source(source, source_graph, result, colors),
-                      render_match_overlay(source, dest, dest_graph, result, colors), colors.unknown);
+  RgbImage picture = side_by_side(render_match_source(source, source_graph, result, colors),
+                                  render_match_overlay(source, dest, dest_graph, result, colors), colors.unknown);
+  return result.ok ? picture : with_rejection_banner(picture, result.reason);
 }
 
 /// `image` shrunk by an integer `factor` (≥ 1). Each block becomes its mean colour, unless it
