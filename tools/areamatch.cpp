@@ -75,14 +75,9 @@ std::set<std::string> merged(std::set<std::string> a, const std::set<std::string
 areamatch::LoadOptions load_options(const Args& args) {
   areamatch::LoadOptions options;
   options.resolution = args.number("resolution", /*positive=*/true);
-  options.free_thresh = args.number("free-thresh");
-  options.occupied_thresh = args.number("occupied-thresh");
+  options.free_thresh = args.fraction("free-thresh");
+  options.occupied_thresh = args.fraction("occupied-thresh");
   if (args.flag("negate")) options.negate = true;
-  for (const auto& [name, value] : {std::pair{"free-thresh", options.free_thresh}, std::pair{"occupied-thresh", options.occupied_thresh}}) {
-    if (value && !(*value >= 0.0 && *value <= 1.0)) {
-      throw UsageError(std::string("--") + name + " must be in [0, 1], got " + format_double(*value));
-    }
-  }
   return options;
 }
 

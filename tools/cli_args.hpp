@@ -111,10 +111,10 @@ class Args {
     return v;
   }
 
-  /// A number in [0, 1] (a share or a probability).
+  /// A number in [0, 1] (a share, a probability or a threshold on one).
   std::optional<double> fraction(const std::string& name) const {
     const auto v = number(name);
-    if (v && !(*v >= 0.0 && *v <= 1.0)) throw UsageError("--" + name + " must be in [0, 1] (a share), got " + *text(name));
+    if (v && !(*v >= 0.0 && *v <= 1.0)) throw UsageError("--" + name + " must be in [0, 1], got " + *text(name));
     return v;
   }
 

@@ -215,6 +215,17 @@ inline RgbImage render_match_source(const OccupancyGrid& source, const AreaGraph
   return image;
 }
 
+namespace detail {
+/// Copies `in` into `out` with its top-left corner at (x0, y0); `in` must fit.
+inline void blit(RgbImage& out, const RgbImage& in, int x0, int y0) {
+  for (int r = 0; r < in.height; ++r)
+    for (int c = 0; c < in.width; ++c) {
+      const std::uint8_t* p = &in.rgb[(static_cast<std::size_t>(r) * in.width + c) * 3];
+      out.set(x0 + c, y0 + r, p[0], p[1], p[2]);
+    }
+}
+}  // namespace detail
+
 /// Two pictures side by side, top-aligned, with a white gap between them; the shorter one is
 /// padded with `background` (the maps' unknown colour, so the padding reads as "no map here").
 inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, const Rgb& background = MapColors{}.unknown,
@@ -223,15 +234,8 @@ inline RgbImage side_by_side(const RgbImage& left, const RgbImage& right, const 
                background[2]);
   for (int r = 0; r < out.height; ++r)
     for (int c = left.width; c < left.width + gap; ++c) out.set(c, r, 255, 255, 255);
-  auto blit = [&out](const RgbImage& in, int x0) {
-    for (int r = 0; r < in.height; ++r)
-      for (int c = 0; c < in.width; ++c) {
-        const std::uint8_t* p = &in.rgb[(static_cast<std::size_t>(r) * in.width + c) * 3];
-        out.set(x0 + c, r, p[0], p[1], p[2]);
-      }
-  };
-  blit(left, 0);
-  blit(right, left.width + gap);
+  detail::blit(out, left, 0, 0);
+  detail::blit(out, right, left.width + gap, 0);
   return out;
 }
 
@@ -249,12 +253,7 @@ inline RgbImage with_rejection_banner(const RgbImage& picture, const std::string
   }
   const int band = 9 * scale;
   RgbImage out(picture.width, picture.height + band, 190, 30, 30);
-  for (int r = 0; r < picture.height; ++r) {
-    for (int c = 0; c < picture.width; ++c) {
-      const std::uint8_t* p = &picture.rgb[(static_cast<std::size_t>(r) * picture.width + c) * 3];
-      out.set(c, r + band, p[0], p[1], p[2]);
-    }
-  }
+  detail::blit(out, picture, 0, band);
   detail::draw_tiny_text(out, 2 * scale, 2 * scale, text, scale, 255, 255, 255);
   return out;
 }

@@ -20,6 +20,7 @@
 #include "../matcher.hpp"
 #include "../segment/voronoi_segmenter.hpp"
 
+#include <algorithm>
 #include <chrono>
 #include <cstddef>
 #include <optional>
@@ -150,7 +151,7 @@ MapPairRun match_map_files(const M& matcher, const std::string& source_path, con
     OccupancyGrid grid = load_map(path, i == 0 ? options.source_load : options.dest_load);
     // A map without free space (all unknown, all wall, one pixel) is bad input, not a pair that
     // does not match.
-    if (grid.count().free == 0) {
+    if (std::find(grid.cells().begin(), grid.cells().end(), CellState::free) == grid.cells().end()) {
       throw format_error(path + ": the map has no free cells (" + std::to_string(grid.width()) + " x " + std::to_string(grid.height()) +
                          " cells, all unknown or occupied): nothing to match; check the image and its free_thresh / negate");
     }
