@@ -269,13 +269,16 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   CHECK(none.out.find("\"ok\": false") != std::string::npos);
   CHECK(none.out.find("no areas") != std::string::npos);
   // Numbers out of their range, and a typo, name the option.
-  for (const auto& [bad, message] : std::vector<std::pair<std::string, std::string>>{
+  // (A plain pair, not a structured binding: clang refuses to capture bindings in INFO's lambda.)
+  for (const auto& bad_and_message : std::vector<std::pair<std::string, std::string>>{
            {"--door-width 1e308", "--door-width must be at most 20 m"},
            {"--source-resolution 1e-9", "robot.yaml: resolution 1e-09 m per cell is finer than areamatch::min_resolution_m"},
            {"--min-agreement 5", "--min-agreement must be in [0, 1]"},
            {"--min-p-correct -0.1", "--min-p-correct must be in [0, 1]"},
            {"--min-score 1.5", "--min-score must be in [0, 1]"},
            {"--alow-reflection", "unknown option --alow-reflection (did you mean --allow-reflection?)"}}) {
+    const std::string& bad = bad_and_message.first;
+    const std::string& message = bad_and_message.second;
     const Run r = run("match " + pair + " " + bad);
     INFO(bad << " -> " << r.out);
     CHECK(r.status == 2);
