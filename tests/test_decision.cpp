@@ -204,19 +204,19 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   r.evidence.overlap_m2 = 283.0;             // ... on a whole floor
   r.p_correct = 0.2;
   CHECK(detail::passes_agreement_gate(r.evidence, params));
-  CHECK(detail::refusal(r, params, true).empty());
+  CHECK(detail::refusal(r, params, true).reason.empty());
   r.evidence.forward_wall_agreement = 0.8;  // both ways: the model alone, and it is not sure
   CHECK(lower_wall_agreement(r.evidence) == 0.8);
   CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params));
-  const std::string refused = detail::refusal(r, params, true);
+  const std::string refused = detail::refusal(r, params, true).reason;
   CHECK(refused.find("gate_max_lower_walls 0.7") != std::string::npos);
   CHECK(refused.find("accept_p_correct 0.85") != std::string::npos);
   r.p_correct = 0.9;  // ... unless it is sure
-  CHECK(detail::refusal(r, params, true).empty());
+  CHECK(detail::refusal(r, params, true).reason.empty());
   r.p_correct = 0.2;
   MatcherParams always = params;
   always.gate_max_lower_walls = 1.01;  // the rule before 2026-12-03
-  CHECK(detail::refusal(r, always, true).empty());
+  CHECK(detail::refusal(r, always, true).reason.empty());
   r.evidence.forward_wall_agreement = std::numeric_limits<double>::quiet_NaN();  // not measured: lower 0
   CHECK(lower_wall_agreement(r.evidence) == 0.0);
   CHECK(detail::passes_agreement_gate(r.evidence, params));
@@ -244,15 +244,15 @@ TEST_CASE("the agreement gate needs enough shared free space: walls that agree o
   r.evidence.overlap_m2 = 42.9;
   r.p_correct = 0.09;
   CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params));
-  const std::string refused = detail::refusal(r, params, true);
+  const std::string refused = detail::refusal(r, params, true).reason;
   CHECK(refused.find("gate_min_overlap_m2 100") != std::string::npos);
   CHECK(refused.find("42.9") != std::string::npos);
   r.p_correct = 0.9;  // the model may still accept it alone
-  CHECK(detail::refusal(r, params, true).empty());
+  CHECK(detail::refusal(r, params, true).reason.empty());
   r.p_correct = 0.09;
   MatcherParams any = params;
   any.gate_min_overlap_m2 = 0.0;  // the rule before 2026-12-04
-  CHECK(detail::refusal(r, any, true).empty());
+  CHECK(detail::refusal(r, any, true).reason.empty());
   r.evidence.overlap_m2 = 231.0;  // the least any right answer through the gate shares on the real maps
   CHECK(detail::passes_agreement_gate(r.evidence, params));
 }

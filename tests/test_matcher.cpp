@@ -268,7 +268,9 @@ TEST_CASE("maps of different buildings do not crash and score lower than the tru
   CHECK(wrong.score < right.score);
   // ... and they are rejected, with the reason and the evidence.
   CHECK_FALSE(wrong.ok);
-  CHECK(wrong.reason.find("same building") != std::string::npos);
+  CHECK(wrong.rejection != Rejection::none);
+  CHECK(wrong.rejection != Rejection::no_answer);
+  CHECK(wrong.reason.find(wrong.rejection == Rejection::different_places ? "different places: " : "not sure: ") == 0);
   CHECK(wrong.evidence.agreement < matcher.params.min_agreement);
   CHECK(wrong.p_correct < 0.5);
   CHECK(right.p_correct > 0.5);
@@ -964,4 +966,61 @@ TEST_CASE("a rejected match's picture says so in a red band above it; an accepte
   const RgbImage narrow = with_rejection_banner(RgbImage(30, 10), result.reason);
   CHECK(narrow.width == 30);
   CHECK(narrow.height > 10);
+}
+
+TEST_CASE("a refusal says 'different places' only when the evidence is against, else 'not sure'") {
+  const MatcherParams params;
+  MatchResult result;
+  result.score = 0.6;
+  result.confidence = 0.2;
+  result.evidence.agreement = 0.7;  // below min_agreement
+  result.evidence.forward_wall_agreement = 0.5;
+  result.evidence.reverse_wall_agreement = 0.8;
+  result.evidence.overlap_m2 = 300.0;
+  // A right answer the evidence does not carry (Intel's: agreement 0.77, p_correct 0.04): not sure,
+  // and nothing says the maps are of different buildings.
+  result.p_correct = 0.04;
+  detail::Refusal r = detail::refusal(result, params, true);
+  CHECK(r.kind == Rejection::not_sure);
+  CHECK(r.reason.find("not sure: ") == 0);
+  CHECK(r.reason.find("same building") == std::string::npos);
+  CHECK(r.reason.find("different places") == std::string::npos);
+  CHECK(r.reason.find("it may be another building, or this one mapped too differently") != std::string::npos);
+  // The model all but sure it is wrong: different places.
+  result.p_correct = 0.5 * params.decision.different_places_p;
+  r = detail::refusal(result, params, true);
+  CHECK(r.kind == Rejection::different_places);
+  CHECK(r.reason.find("different places: ") == 0);
+  CHECK(r.reason.find("< different_places_p") != std::string::npos);
+  // A whole-map score below min_score: different places, whatever the model.
+  result.p_correct = 0.5;
+  result.score = 0.5 * params.min_score;
+  r = detail::refusal(result, params, true);
+  CHECK(r.kind == Rejection::different_places);
+  result.score = 0.6;
+  // The maps agree but the gate is closed (walls agree both ways) and the model is not sure: not sure.
+  result.evidence.agreement = 0.9;
+  result.evidence.forward_wall_agreement = result.evidence.reverse_wall_agreement = 0.9;
+  r = detail::refusal(result, params, true);
+  CHECK(r.kind == Rejection::not_sure);
+  CHECK(r.reason.find("not sure: the maps agree") == 0);
+  // A close rival: not sure, even with a model that would accept.
+  MatcherParams strict = params;
+  strict.min_confidence = 0.05;
+  result.p_correct = 0.99;
+  result.confidence = 0.01;
+  r = detail::refusal(result, strict, true);
+  CHECK(r.kind == Rejection::not_sure);
+  CHECK(r.reason.find("not sure: ambiguous") == 0);
+  // Accepted: no refusal.
+  result.confidence = 0.2;
+  r = detail::refusal(result, strict, true);
+  CHECK(r.reason.empty());
+  CHECK(r.kind == Rejection::none);
+  // No answer at all: a map without areas.
+  const OccupancyGrid walls(60, 40, 0.05, {}, CellState::occupied);
+  const MatchResult empty = Matcher<>{}.match(walls, walls);
+  CHECK_FALSE(empty.ok);
+  CHECK(empty.rejection == Rejection::no_answer);
+  CHECK(to_string(Rejection::not_sure) == std::string("not sure"));
 }

@@ -403,15 +403,18 @@ class Matcher {
     MatchResult result;
     result.statistics.source_areas = source.areas.size();
     result.statistics.dest_areas = dest.areas.size();
-    auto finish = [&](std::string reason) {
-      result.ok = reason.empty();
-      result.reason = std::move(reason);
+    auto finish = [&](detail::Refusal refusal) {
+      result.ok = refusal.reason.empty();
+      result.reason = std::move(refusal.reason);
+      result.rejection = result.ok ? Rejection::none : refusal.kind;
       result.timings.match_s = detail::seconds_since(start);
       result.timings.total_s = result.timings.match_s;
       return result;
     };
-    if (source.areas.empty()) return finish("the source map has no areas: " + source.reason);
-    if (dest.areas.empty()) return finish("the destination map has no areas: " + dest.reason);
+    // A refusal before an answer exists says nothing of the maps but that there is none.
+    auto no_answer = [&](std::string reason) { return finish({std::move(reason), Rejection::no_answer}); };
+    if (source.areas.empty()) return no_answer("the source map has no areas: " + source.reason);
+    if (dest.areas.empty()) return no_answer("the destination map has no areas: " + dest.reason);
 
     // What each map gives alone: prepared beforehand (or while the other map was segmented), or
     // built now — the destination's lookup with normals, for point-to-line ICP onto it. Both
@@ -476,7 +479,7 @@ class Matcher {
     const MapData& dest_data = dest_map.data ? *dest_map.data : *dest_own;
     const HypothesisInputs maps = hypothesis_inputs(source, dest, source_data, dest_data);
     if (hypotheses.empty()) {
-      return finish("no transform hypothesis: " + std::to_string(pairs.size()) +
+      return no_answer("no transform hypothesis: " + std::to_string(pairs.size()) +
                     " mutual area pairs, none overlapping by at least " +
                     detail::format_double(params.hypotheses.min_area_overlap) + " under its own transform");
     }
@@ -487,7 +490,7 @@ class Matcher {
         SelectionInputs{params, maps, pairs, hypotheses, clusters, source_data.fine(), dest_data.fine(), edges},
         result.statistics);
     result.timings.selection_s = detail::seconds_since(stage);
-    if (selected.finalists.empty()) return finish("no cluster survived the selection");
+    if (selected.finalists.empty()) return no_answer("no cluster survived the selection");
 
     describe_answer(source, dest, source_data, dest_data, edges, selected, result);
     return finish(detail::refusal(result, params, selected.comparable_scores));

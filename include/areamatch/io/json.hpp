@@ -91,14 +91,15 @@ inline std::string json_pixel_transform(const PixelTransform& m) {
 }
 }  // namespace detail
 
-/// A match result as one JSON object on one line: ok, reason (when not ok), the transform in
+/// A match result as one JSON object on one line: ok, reason and rejection (when not ok: "different
+/// places", "not sure" or "no answer", `Rejection`), the transform in
 /// world terms (rotation_deg, translation_m, scale, reflected) and as pixel_transform, score,
 /// confidence and its two margins, p_correct, matched_areas, statistics and timings (seconds).
 inline std::string match_result_json(const MatchResult& r) {
   using detail::json_number;
   const Similarity2& T = r.T_dest_source;
   std::string out = "{\"ok\": " + std::string(r.ok ? "true" : "false");
-  if (!r.ok) out += ", \"reason\": " + detail::json_quote(r.reason);
+  if (!r.ok) out += ", \"reason\": " + detail::json_quote(r.reason) + ", \"rejection\": \"" + to_string(r.rejection) + "\"";
   out += ", \"rotation_deg\": " + json_number(T.rotation * 180.0 / pi);
   out += ", \"translation_m\": [" + json_number(T.translation.x()) + ", " + json_number(T.translation.y()) + "]";
   out += ", \"scale\": " + json_number(T.scale) + ", \"scale_estimated\": " + (r.scale_estimated ? "true" : "false") +

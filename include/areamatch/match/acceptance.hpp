@@ -26,54 +26,75 @@ inline bool passes_agreement_gate(const MatchEvidence& evidence, const MatcherPa
          evidence.overlap_m2 >= params.gate_min_overlap_m2;
 }
 
-/// Why the answer in `result` (margins, evidence and p_correct measured) is refused; empty when
-/// it is accepted. `score_gate`: its score is on the whole-map scale that `min_score` applies to.
-inline std::string refusal(const MatchResult& result, const MatcherParams& params, bool score_gate) {
-  if (score_gate && result.score < params.min_score) {
-    return "best whole-map score " + format_fixed(result.score, 3) + " is below min_score " +
-           format_double(params.min_score) + ": the maps do not match";
-  }
+/// A refusal: its reason (empty when accepted) and what it says of the maps.
+struct Refusal {
+  std::string reason;
+  Rejection kind = Rejection::none;
+};
+
+/// Why the answer in `result` (margins, evidence and p_correct measured) is refused, and whether
+/// that says "different places" or "not sure"; an empty reason when it is accepted.
+/// `score_gate`: its score is on the whole-map scale that `min_score` applies to.
+inline Refusal refusal(const MatchResult& result, const MatcherParams& params, bool score_gate) {
   const MatchEvidence& evidence = result.evidence;
+  const std::string p_text = "p_correct " + format_fixed(result.p_correct, 3);
+  // Said of a refusal whose model all but rules the answer out, and of one it does not.
+  const bool model_against = result.p_correct < params.decision.different_places_p;
+  const Rejection weak = model_against ? Rejection::different_places : Rejection::not_sure;
+  const std::string weak_words = model_against ? "different places: " : "not sure: ";
+  const std::string unsure_tail =
+      model_against ? "" : "; it may be another building, or this one mapped too differently (clutter, bends, a partial map)";
+  if (score_gate && result.score < params.min_score) {
+    return {"different places: best whole-map score " + format_fixed(result.score, 3) + " is below min_score " +
+                format_double(params.min_score) + ": the maps do not match",
+            Rejection::different_places};
+  }
   const bool model_sure = result.p_correct >= params.decision.accept_p_correct;
   if (evidence.agreement < params.min_agreement && !model_sure) {
-    return "the maps agree too little under the best transform to be the same building: agreement " +
-           format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(params.min_agreement) +
-           " (the destination's walls near the source's free space explained: " +
-           format_fixed(evidence.reverse_wall_agreement, 3) + ", the source's near the destination's: " +
-           format_fixed(evidence.forward_wall_agreement, 3) + ", free-space IoU " + format_fixed(evidence.free_iou, 3) +
-           "; p_correct " + format_fixed(result.p_correct, 3) + " < accept_p_correct " +
-           format_double(params.decision.accept_p_correct) + ")";
+    return {weak_words + "the maps agree too little under the best transform to accept it: agreement " +
+                format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(params.min_agreement) +
+                " (the destination's walls near the source's free space explained: " +
+                format_fixed(evidence.reverse_wall_agreement, 3) + ", the source's near the destination's: " +
+                format_fixed(evidence.forward_wall_agreement, 3) + ", free-space IoU " + format_fixed(evidence.free_iou, 3) +
+                "; " + p_text + " < accept_p_correct " + format_double(params.decision.accept_p_correct) +
+                (model_against ? " and < different_places_p " + format_double(params.decision.different_places_p) : "") + ")" +
+                unsure_tail,
+            weak};
   }
   // Agreement enough, but on too little shared free space: the gate is closed, the model decides.
   if (evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls &&
       !passes_agreement_gate(evidence, params) && !model_sure) {
-    return "the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
-           format_double(params.min_agreement) + ") on too little shared free space to go on that alone (" +
-           format_fixed(evidence.overlap_m2, 1) + " m² < gate_min_overlap_m2 " + format_fixed(params.gate_min_overlap_m2, 0) +
-           "), where the calibrated model judges alone, and it is not sure enough: p_correct " +
-           format_fixed(result.p_correct, 3) + " < accept_p_correct " + format_double(params.decision.accept_p_correct);
+    return {"not sure: the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
+                format_double(params.min_agreement) + ") on too little shared free space to go on that alone (" +
+                format_fixed(evidence.overlap_m2, 1) + " m² < gate_min_overlap_m2 " + format_fixed(params.gate_min_overlap_m2, 0) +
+                "), where the calibrated model judges alone, and it is not sure enough: " + p_text + " < accept_p_correct " +
+                format_double(params.decision.accept_p_correct),
+            Rejection::not_sure};
   }
   // Agreement enough, but the walls agree both ways too: the gate is closed, the model decides.
   if (evidence.agreement >= params.min_agreement && !passes_agreement_gate(evidence, params) && !model_sure) {
-    return "the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
-           format_double(params.min_agreement) + ") and their walls agree both ways (the lower " +
-           format_fixed(lower_wall_agreement(evidence), 3) + " > gate_max_lower_walls " +
-           format_double(params.gate_max_lower_walls) + "), where the calibrated model judges alone, and it is not sure " +
-           "enough: p_correct " + format_fixed(result.p_correct, 3) + " < accept_p_correct " +
-           format_double(params.decision.accept_p_correct) + " (alike buildings agree like this too)";
+    return {"not sure: the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
+                format_double(params.min_agreement) + ") and their walls agree both ways (the lower " +
+                format_fixed(lower_wall_agreement(evidence), 3) + " > gate_max_lower_walls " +
+                format_double(params.gate_max_lower_walls) + "), where the calibrated model judges alone, and it is not sure " +
+                "enough: " + p_text + " < accept_p_correct " + format_double(params.decision.accept_p_correct) +
+                " (alike buildings agree like this too)",
+            Rejection::not_sure};
   }
   if (result.p_correct < params.decision.min_p_correct) {
-    return "the answer is too likely wrong: p_correct " + format_fixed(result.p_correct, 3) + " < min_p_correct " +
-           format_double(params.decision.min_p_correct) + " (wall agreement " +
-           format_fixed(evidence.forward_wall_agreement, 3) + " / " + format_fixed(evidence.reverse_wall_agreement, 3) +
-           ", rooms " + format_fixed(evidence.room_agreement, 3) + ", margin " + format_fixed(result.confidence, 3) +
-           ", overlap " + format_fixed(evidence.overlap_m2, 1) + " m²)";
+    return {weak_words + "the answer is too likely wrong: " + p_text + " < min_p_correct " +
+                format_double(params.decision.min_p_correct) + " (wall agreement " +
+                format_fixed(evidence.forward_wall_agreement, 3) + " / " + format_fixed(evidence.reverse_wall_agreement, 3) +
+                ", rooms " + format_fixed(evidence.room_agreement, 3) + ", margin " + format_fixed(result.confidence, 3) +
+                ", overlap " + format_fixed(evidence.overlap_m2, 1) + " m²)",
+            weak};
   }
   if (result.confidence < params.min_confidence) {
-    return "ambiguous: a different transform scores within " + format_fixed(result.confidence, 3) +
-           " of the best (min_confidence " + format_double(params.min_confidence) + ")";
+    return {"not sure: ambiguous: a different transform scores within " + format_fixed(result.confidence, 3) +
+                " of the best (min_confidence " + format_double(params.min_confidence) + ")",
+            Rejection::not_sure};
   }
-  return "";
+  return {};
 }
 
 }  // namespace areamatch::detail

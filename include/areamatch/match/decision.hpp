@@ -78,6 +78,13 @@ struct DecisionParams {
   double accept_p_correct = 0.85;
   /// Below this the answer is rejected whatever the agreement (0: off).
   double min_p_correct = 0.0;
+  /// A refused answer is called "different places" (`Rejection::different_places`) only when
+  /// p_correct is below this — the model puts 99 % on the answer being wrong — and "not sure"
+  /// above it. It words the refusal and never changes `ok`. 0.01 by principle; on the rows of
+  /// `scripts/calibration_data.sh` (2026-12-05), with p_correct cross-validated by building, no
+  /// right answer of a real building is below it (the lowest: Intel's 0.038) and 84 % of their
+  /// wrong ones are (docs/evaluation.md, "What a rejection says").
+  double different_places_p = 0.01;
 
   void validate() const {
     if (!std::isfinite(bias)) throw parameter_error("DecisionParams::bias must be finite");
@@ -89,6 +96,9 @@ struct DecisionParams {
     }
     if (!(accept_p_correct >= 0.0 && accept_p_correct <= 1.0)) {
       throw parameter_error("DecisionParams::accept_p_correct must be in [0, 1]");
+    }
+    if (!(different_places_p >= 0.0 && different_places_p <= 1.0)) {
+      throw parameter_error("DecisionParams::different_places_p must be in [0, 1]");
     }
   }
 };

@@ -85,7 +85,9 @@ struct MatcherParams {
   /// accepted when p_correct ≥ `decision.accept_p_correct`; below `decision.min_p_correct` it is
   /// rejected (off by default).
   DecisionParams decision;
-  /// Below this `MatchEvidence::agreement` the result is rejected as "not the same building".
+  /// Below this `MatchEvidence::agreement` the result is rejected unless the model is sure
+  /// (`decision.accept_p_correct`); the refusal says "different places" or "not sure"
+  /// (`decision.different_places_p`).
   /// Calibrated on the real pairs of shared/pairs.json, all 596 pairs of maps of different
   /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): every true pair
   /// scored 0.840 or more; 2 of 2876 pairs of different buildings scored above 0.835 (at most 0.845).

@@ -107,9 +107,32 @@ struct MatchStatistics {
   std::size_t overlay_failures = 0;
 };
 
+/// What a refusal says of the two maps (`MatchResult::rejection`): that they look like different
+/// places, or that the best answer may be right but the evidence does not carry it. The two call
+/// for different things: another map, or `--allow-reflection`, a door width, a known-same-building
+/// override (`areamatch assess --same-building`).
+enum class Rejection {
+  none,              ///< accepted
+  no_answer,         ///< nothing to judge: a map without areas, no hypothesis, no cluster survived
+  different_places,  ///< the evidence is against: a low whole-map score, or the model all but sure the answer is wrong
+  not_sure,          ///< too weak to accept: little agreement with a model not sure either way, or a close rival
+};
+
+/// "none", "no answer", "different places", "not sure": as `--json` writes it.
+inline const char* to_string(Rejection r) {
+  switch (r) {
+    case Rejection::none: return "none";
+    case Rejection::no_answer: return "no answer";
+    case Rejection::different_places: return "different places";
+    case Rejection::not_sure: return "not sure";
+  }
+  return "none";
+}
+
 struct MatchResult {
   bool ok = false;
-  std::string reason;              ///< why not ok (empty when ok)
+  std::string reason;              ///< why not ok (empty when ok), saying what the `rejection` is
+  Rejection rejection = Rejection::none;  ///< what the refusal says of the maps (`none` when ok)
   Similarity2 T_dest_source;       ///< source world → destination world (metres)
   PixelTransform pixel_transform = PixelTransform::Zero();  ///< source pixel → destination pixel
   /// Whole-map score of the result: (1 − w) · IoU of the two maps' area-covered free space + w ·

@@ -104,6 +104,7 @@ MatchResult estimate_scale(const OccupancyGrid& source, const MapView<Descriptor
   if (finalists.empty()) {
     result = run_at(1.0, graph);
     result.ok = false;
+    result.rejection = Rejection::no_answer;
     result.reason = "the scale could not be estimated: no candidate scale in [" + format_double(p.scale.min_scale) +
                     ", " + format_double(p.scale.max_scale) + "] gave a transform hypothesis" +
                     (result.reason.empty() ? "" : " (" + result.reason + ")");
