@@ -290,6 +290,26 @@ TEST_CASE("merge_maps: bad input is refused, maps without areas are reported, re
   const MergeResult result = merge_maps(matcher, maps);
   CHECK_FALSE(result.maps[2].placed);
   CHECK(result.maps[2].reason.find("no areas") != std::string::npos);
+  // Its picture: the merged map, then a legend naming each map's colour, the unplaced one said so.
+  std::vector<const OccupancyGrid*> grids;
+  for (const auto& map : maps) grids.push_back(&map.grid());
+  const RgbImage picture = render_merge(result, grids, {"plan", "robot", "blank"});
+  CHECK(picture.width >= result.merged.width());
+  CHECK(picture.height > result.merged.height());
+  auto count_colour = [&](const Rgb& c, int from_row, int to_row) {
+    int n = 0;
+    for (int r = from_row; r < to_row; ++r)
+      for (int col = 0; col < picture.width; ++col) {
+        const std::uint8_t* p = &picture.rgb[(static_cast<std::size_t>(r) * picture.width + col) * 3];
+        n += p[0] == c[0] && p[1] == c[1] && p[2] == c[2];
+      }
+    return n;
+  };
+  // Each placed map's walls are drawn in its colour (the robot's over the plan's), and its swatch
+  // is in the legend.
+  CHECK(count_colour(map_color(1), 0, result.merged.height()) > 1000);
+  for (int m = 0; m < 2; ++m) CHECK(count_colour(map_color(m), result.merged.height(), picture.height) > 0);
+  CHECK(count_colour(map_color(2), result.merged.height(), picture.height) == 0);  // not placed: grey
   const MergeResult again = merge_maps(matcher, maps);
   for (std::size_t m = 0; m < 3; ++m) {
     CHECK(again.maps[m].placed == result.maps[m].placed);

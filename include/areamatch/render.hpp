@@ -55,20 +55,47 @@ inline bool touches_free(const OccupancyGrid& grid, int col, int row) {
 
 namespace detail {
 
-/// Draws `source`'s walls (occupied cells next to free space) onto a picture of `dest`:
-/// `source_pixel(col, row)` is the source pixel under destination pixel (col, row). Each
-/// destination pixel looks up the source cell under it, so the overlay has no holes whatever the
-/// scale.
+/// Which pixels of a picture of `dest` show one of `source`'s walls (occupied cells next to free
+/// space): `source_pixel(col, row)` is the source pixel under destination pixel (col, row). Each
+/// destination pixel looks up the source cell under it, so the walls have no holes whatever the
+/// scale. Row-major, 1 where a wall is.
 template <class SourcePixel>
-void draw_walls_under(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source, const SourcePixel& source_pixel,
-                      const Rgb& color) {
+std::vector<std::uint8_t> walls_under(const OccupancyGrid& dest, const OccupancyGrid& source, const SourcePixel& source_pixel) {
+  std::vector<std::uint8_t> mask(static_cast<std::size_t>(dest.width()) * static_cast<std::size_t>(dest.height()), 0);
   for (int row = 0; row < dest.height(); ++row) {
     for (int col = 0; col < dest.width(); ++col) {
       const Eigen::Vector2d p = source_pixel(col, row);
       const int sc = static_cast<int>(std::floor(p.x() + 0.5)), sr = static_cast<int>(std::floor(p.y() + 0.5));
       if (source.contains(sc, sr) && source.at(sc, sr) == CellState::occupied && touches_free(source, sc, sr)) {
-        image.set(col, row, color[0], color[1], color[2]);
+        mask[dest.index(col, row)] = 1;
       }
+    }
+  }
+  return mask;
+}
+
+/// `source`'s walls on a picture of `dest` after `T_dest_source` (world frames), as `walls_under`.
+inline std::vector<std::uint8_t> source_walls(const OccupancyGrid& dest, const OccupancyGrid& source, const Similarity2& T_dest_source) {
+  const Eigen::Affine2d source_from_dest =
+      source.pixel_from_world() * T_dest_source.affine().inverse() * dest.world_from_pixel();
+  return walls_under(dest, source, [&](int col, int row) { return Eigen::Vector2d(source_from_dest * Eigen::Vector2d(col, row)); });
+}
+
+/// `source`'s walls on a picture of `dest` through a warp (source world → dest world), read as a
+/// merge reads a warped map (`FuseParams::warp_lattice_m`).
+inline std::vector<std::uint8_t> source_walls(const OccupancyGrid& dest, const OccupancyGrid& source, const WarpField& warp) {
+  const FuseParams reading;
+  const WarpedPixels pixels(source, warp, dest, warped_outline(known_corners(source), warp, reading.warp_lattice_m),
+                            reading.warp_lattice_m);
+  return walls_under(dest, source, [&](int col, int row) { return pixels.at(col, row); });
+}
+
+/// Paints the pixels of `mask` (row-major over `image`) in `color`.
+inline void paint(RgbImage& image, const std::vector<std::uint8_t>& mask, const Rgb& color) {
+  for (std::size_t i = 0; i < mask.size(); ++i) {
+    if (mask[i]) {
+      image.set(static_cast<int>(i % static_cast<std::size_t>(image.width)), static_cast<int>(i / static_cast<std::size_t>(image.width)),
+                color[0], color[1], color[2]);
     }
   }
 }
@@ -79,20 +106,14 @@ void draw_walls_under(RgbImage& image, const OccupancyGrid& dest, const Occupanc
 /// `T_dest_source` (world frames).
 inline void draw_source_walls(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source,
                               const Similarity2& T_dest_source, const Rgb& color) {
-  const Eigen::Affine2d source_from_dest =
-      source.pixel_from_world() * T_dest_source.affine().inverse() * dest.world_from_pixel();
-  detail::draw_walls_under(image, dest, source, [&](int col, int row) { return Eigen::Vector2d(source_from_dest * Eigen::Vector2d(col, row)); },
-                           color);
+  detail::paint(image, detail::source_walls(dest, source, T_dest_source), color);
 }
 
 /// Draws `source`'s walls onto a picture of `dest` through a warp (source world → dest world),
 /// read as a merge reads a warped map (`FuseParams::warp_lattice_m`).
 inline void draw_source_walls(RgbImage& image, const OccupancyGrid& dest, const OccupancyGrid& source, const WarpField& warp,
                               const Rgb& color) {
-  const FuseParams reading;
-  const detail::WarpedPixels pixels(source, warp, dest,
-                                    detail::warped_outline(detail::known_corners(source), warp, reading.warp_lattice_m), reading.warp_lattice_m);
-  detail::draw_walls_under(image, dest, source, [&](int col, int row) { return pixels.at(col, row); }, color);
+  detail::paint(image, detail::source_walls(dest, source, warp), color);
 }
 
 /// The destination map with the source map's walls drawn over it after `T_dest_source`.
@@ -103,10 +124,10 @@ inline RgbImage render_overlay(const OccupancyGrid& dest, const OccupancyGrid& s
   return image;
 }
 
-/// A distinct, light colour for area `id` (golden-angle hues, so neighbours in id differ).
-inline Rgb area_color(int id) {
-  const double hue = std::fmod(id * 137.50776405, 360.0) / 60.0;
-  const double s = 0.55, v = 0.95;
+namespace detail {
+/// The RGB of a hue (degrees), saturation and value (both in [0, 1]).
+inline Rgb hsv_color(double hue_deg, double s, double v) {
+  const double hue = std::fmod(hue_deg, 360.0) / 60.0;
   const double c = v * s, x = c * (1.0 - std::abs(std::fmod(hue, 2.0) - 1.0)), m = v - c;
   double r = 0, g = 0, b = 0;
   switch (static_cast<int>(hue)) {
@@ -117,9 +138,17 @@ inline Rgb area_color(int id) {
     case 4: r = x, b = c; break;
     default: r = c, b = x; break;
   }
-  auto byte = [m](double v) { return static_cast<std::uint8_t>(std::lround((v + m) * 255.0)); };
+  auto byte = [m](double value) { return static_cast<std::uint8_t>(std::lround((value + m) * 255.0)); };
   return {byte(r), byte(g), byte(b)};
 }
+}  // namespace detail
+
+/// A distinct, light colour for area `id` (golden-angle hues, so neighbours in id differ).
+inline Rgb area_color(int id) { return detail::hsv_color(id * 137.50776405, 0.55, 0.95); }
+
+/// A strong colour for map `index` of a merge, to read as a line on white: golden-angle hues,
+/// every other map darker, so that many maps still differ.
+inline Rgb map_color(int index) { return detail::hsv_color(index * 137.50776405, 0.9, index % 2 ? 0.6 : 0.9); }
 
 /// Draws a line of world points onto a picture of `grid` (nearest pixels).
 inline void draw_world_line(RgbImage& image, const OccupancyGrid& grid, const Eigen::Vector2d& a,
@@ -296,18 +325,96 @@ inline RgbImage downscaled(const RgbImage& image, int factor) {
   return out;
 }
 
-/// The picture `areamatch merge --png` writes: the merged map with each placed map's walls in its
-/// own colour (`area_color` of its index). `maps` in the order given to `merge_maps`.
-inline RgbImage render_merge(const MergeResult& result, const std::vector<const OccupancyGrid*>& maps,
-                             const MapColors& colors = {}) {
-  RgbImage image = render_grid(result.merged, colors);
-  for (std::size_t m = 0; m < maps.size() && m < result.maps.size(); ++m) {
-    if (!result.maps[m].placed) continue;
-    const Rgb color = area_color(static_cast<int>(m));
-    if (result.maps[m].warp) draw_source_walls(image, result.merged, *maps[m], result.maps[m].warp->field, color);
-    else draw_source_walls(image, result.merged, *maps[m], result.maps[m].T_reference_map, color);
+namespace detail {
+
+/// `mask` (row-major, `width` × `height`) grown by `radius` pixels (a square), so that a one-pixel
+/// line is seen at a picture's size.
+inline std::vector<std::uint8_t> thickened(const std::vector<std::uint8_t>& mask, int width, int height, int radius) {
+  if (radius <= 0) return mask;
+  std::vector<std::uint8_t> rows(mask.size(), 0), out(mask.size(), 0);
+  for (int r = 0; r < height; ++r)
+    for (int c = 0; c < width; ++c)
+      if (mask[static_cast<std::size_t>(r) * width + c])
+        for (int x = std::max(0, c - radius); x <= std::min(width - 1, c + radius); ++x) rows[static_cast<std::size_t>(r) * width + x] = 1;
+  for (int r = 0; r < height; ++r)
+    for (int c = 0; c < width; ++c)
+      if (rows[static_cast<std::size_t>(r) * width + c])
+        for (int y = std::max(0, r - radius); y <= std::min(height - 1, r + radius); ++y) out[static_cast<std::size_t>(y) * width + c] = 1;
+  return out;
+}
+
+/// A colour mixed towards white: `share` of `color`, the rest white.
+inline Rgb paled(const Rgb& color, double share) {
+  Rgb out{};
+  for (int k = 0; k < 3; ++k) out[static_cast<std::size_t>(k)] = static_cast<std::uint8_t>(std::lround(255.0 - share * (255.0 - color[static_cast<std::size_t>(k)])));
+  return out;
+}
+
+/// One entry of a picture's legend: a swatch in `color` and its `label`.
+struct LegendEntry {
+  Rgb color;
+  std::string label;
+};
+
+/// `picture` above a white strip holding `title` and the entries in as many columns as fit.
+inline RgbImage with_legend(const RgbImage& picture, const std::string& title, const std::vector<LegendEntry>& entries) {
+  const int scale = std::max(2, picture.width / 500);
+  const int line = 8 * scale, swatch = 6 * scale;
+  int label_width = 0;
+  for (const auto& e : entries) label_width = std::max(label_width, tiny_text_width(e.label, scale));
+  const int column = swatch + 2 * scale + label_width + 4 * scale;
+  const int width = std::max(picture.width, std::max(tiny_text_width(title, scale), column) + 4 * scale);
+  const int columns = std::max(1, (width - 2 * scale) / column);
+  const int rows = (static_cast<int>(entries.size()) + columns - 1) / columns;
+  RgbImage out(width, picture.height + (rows + 1) * line + 2 * scale, 255, 255, 255);
+  blit(out, picture, 0, 0);
+  const int x0 = 2 * scale, y0 = picture.height + scale;
+  draw_tiny_text(out, x0, y0 + scale, title, scale, 0, 0, 0);
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const int x = x0 + static_cast<int>(k) % columns * column, y = y0 + (static_cast<int>(k) / columns + 1) * line;
+    const Rgb& c = entries[k].color;
+    for (int dy = 0; dy < swatch; ++dy)
+      for (int dx = 0; dx < swatch; ++dx) out.set(x + dx, y + dy, c[0], c[1], c[2]);
+    draw_tiny_text(out, x + swatch + 2 * scale, y + scale / 2, entries[k].label, scale, 0, 0, 0);
   }
-  return image;
+  return out;
+}
+
+}  // namespace detail
+
+/// The picture `areamatch merge --png` writes: the merged map (black walls) with each placed map's
+/// walls over it in its own colour (`map_color` of its index), thickened to be seen at the
+/// picture's size; where the merged map is free (a wall the other maps outvoted: a scan's
+/// artefact, or a wall out of place) a map's walls are drawn pale, under the others. A legend
+/// below names each map's colour (`names`, in the order given to `merge_maps`; "map i" when
+/// missing) and says which maps were not placed.
+inline RgbImage render_merge(const MergeResult& result, const std::vector<const OccupancyGrid*>& maps,
+                             const std::vector<std::string>& names = {}, const MapColors& colors = {}) {
+  const OccupancyGrid& merged = result.merged;
+  RgbImage image = render_grid(merged, colors);
+  const int radius = std::max(1, std::max(merged.width(), merged.height()) / 1200);
+  std::vector<std::vector<std::uint8_t>> kept(maps.size());
+  std::vector<detail::LegendEntry> legend;
+  for (std::size_t m = 0; m < maps.size(); ++m) {
+    const std::string name = m < names.size() ? names[m] : "map " + std::to_string(m);
+    const bool placed = m < result.maps.size() && result.maps[m].placed;
+    legend.push_back({placed ? map_color(static_cast<int>(m)) : colors.unknown, placed ? name : name + " (not placed)"});
+    if (!placed) continue;
+    const std::vector<std::uint8_t> walls = result.maps[m].warp ? detail::source_walls(merged, *maps[m], result.maps[m].warp->field)
+                                                                : detail::source_walls(merged, *maps[m], result.maps[m].T_reference_map);
+    std::vector<std::uint8_t> outvoted(walls.size(), 0);
+    kept[m].assign(walls.size(), 0);
+    for (std::size_t i = 0; i < walls.size(); ++i) {
+      if (!walls[i]) continue;
+      (merged.cells()[i] == CellState::free ? outvoted : kept[m])[i] = 1;
+    }
+    detail::paint(image, detail::thickened(outvoted, merged.width(), merged.height(), radius - 1),
+                  detail::paled(map_color(static_cast<int>(m)), 0.35));
+  }
+  for (std::size_t m = 0; m < maps.size(); ++m) {
+    if (!kept[m].empty()) detail::paint(image, detail::thickened(kept[m], merged.width(), merged.height(), radius), map_color(static_cast<int>(m)));
+  }
+  return detail::with_legend(image, "WALLS OF EACH MAP IN ITS COLOUR, PALE WHERE THE MERGED MAP IS FREE", legend);
 }
 
 }  // namespace areamatch

@@ -63,6 +63,9 @@ inline std::array<std::uint8_t, 5> tiny_glyph(char c) {
     case ')': return {4, 2, 2, 2, 4};
     case '/': return {1, 1, 2, 4, 4};
     case '%': return {5, 1, 2, 4, 5};
+    case '_': return {0, 0, 0, 0, 7};
+    case '=': return {0, 7, 0, 7, 0};
+    case '#': return {5, 7, 5, 7, 5};
     default: return {0, 0, 0, 0, 0};
   }
 }
