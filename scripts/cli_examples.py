@@ -15,7 +15,12 @@ program under test; `echo $?` prints the previous command's exit status. An HTML
 before a block steers it: `<!-- cli-example: setup CMD -->` runs CMD first (output not shown),
 `<!-- cli-example: slow -->` runs it only with --all. Needs SHARED (blocks naming `maps/` or
 `../shared` are the documented real-map examples); exits 77 (skipped) without it.
-Exit status: 0 all examples as shown, 1 drift (a diff per command), 2 usage.
+Numbers quoted in the page's prose with three or more decimals (an example's p_correct, say) must
+be ones that an example or a command's --help prints now, and the README's counts of the shared
+pairs must be those that `eval ../shared/pairs.json` prints, and every option a command's --help
+lists must be named in the page's section of that command: each is reported (not rewritten by
+--update).
+Exit status: 0 all examples as shown, 1 drift (a diff per command, or a stale number), 2 usage.
 """
 
 import argparse
@@ -40,6 +45,9 @@ MASKS = [
     (re.compile(r"(median|mean) \d+(\.\d+)? ms"), r"\1 <t> ms"),
 ]
 PROGRESS = re.compile(r"^\[\d+/\d+\] ")
+# A number with three or more decimals in the prose quotes a program's output (defaults and rules
+# of thumb have fewer): it must be one that the examples print now, or a default that --help prints.
+QUOTED_NUMBER = re.compile(r"(?<![\w.])\d+\.\d{3,}(?![\w.])")
 
 
 def mask(line):
@@ -125,6 +133,72 @@ def updated(expected, actual):
     return actual
 
 
+def prose_lines(lines):
+    """(0-based line, text) of every line outside fenced blocks."""
+    inside = False
+    for i, line in enumerate(lines):
+        if line.strip().startswith("```"):
+            inside = not inside
+        elif not inside:
+            yield i, line
+
+
+def stale_prose_numbers(doc, lines, printed):
+    """The prose's quoted numbers that nothing printed (`printed`: the examples' and --help's text)."""
+    known = set(QUOTED_NUMBER.findall(printed))
+    return [f"{doc}:{i + 1}: {number} is quoted but no example or --help prints it now"
+            for i, line in prose_lines(lines) for number in QUOTED_NUMBER.findall(line) if number not in known]
+
+
+def undocumented_options(doc, text, cli, shared):
+    """The options a command's --help lists that its `## command` section of the page never names."""
+    sections = {}
+    for section in re.split(r"^## ", text, flags=re.M)[1:]:
+        command = section.split("\n", 1)[0].strip()
+        if re.fullmatch(r"[a-z]+", command):
+            sections[command] = section
+
+    def named(command, option, seen=()):
+        """Whether the section names the option, itself or through the options it refers to."""
+        section = sections.get(command, "")
+        if re.search(re.escape(option) + r"(?![a-z-])", section):
+            return True
+        # "and match's options", "the options of `simulate`": those sections name the rest.
+        for other in set(re.findall(r"(\w+)'s options|the options of `(\w+)`", section)):
+            other = "".join(other)
+            if other in sections and other not in seen and named(other, option, seen + (command,)):
+                return True
+        # "[map options]": how a map file is read, the options of `info`.
+        return "map options" in section and command != "info" and named("info", option, seen + (command,))
+
+    problems = []
+    for command in sections:
+        help_text, status = run(f"areamatch {command} --help", cli, shared, ".", 0)
+        if status != 0:
+            continue
+        for option in sorted(set(re.findall(r"^\s+(--[a-z][a-z-]*)", help_text, re.M))):
+            if not named(command, option):
+                problems.append(f"{doc}: `## {command}` does not name {option} (its --help does)")
+    return problems
+
+
+def stale_readme_counts(readme, printed):
+    """The README's counts of the shared pairs against `eval`'s summary line as printed now."""
+    summary = re.search(r"^correct: (\d+) / (\d+) \(", printed, re.M)  # eval's summary: accepted and right
+    if not summary or not readme.exists():
+        return []
+    accepted, total = summary.groups()
+    text = re.sub(r"\s+", " ", readme.read_text())
+    problems = []
+    for pattern, want, what in [(r"on the (\d+) real pairs of `\.\./shared/pairs\.json`", total, "real pairs"),
+                                (r"(\d+) of the \d+ true pairs accepted", accepted, "accepted pairs"),
+                                (r"\d+ of the (\d+) true pairs accepted", total, "true pairs")]:
+        for found in re.findall(pattern, text):
+            if found != want:
+                problems.append(f"{readme}: says {found} {what}, `eval ../shared/pairs.json` prints {want}")
+    return problems
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.split("\n")[0])
     parser.add_argument("--cli", default=str(ROOT / "build" / "tools" / "areamatch"))
@@ -144,6 +218,9 @@ def main():
     lines = doc.read_text().split("\n")
     drift, checked = 0, 0
     blocks = parse(lines)
+    printed = []  # everything the examples and --help print, for the prose's quoted numbers
+    for command in sorted(set(re.findall(r"^\$ areamatch (\w+)", doc.read_text(), re.M))):
+        printed.append(run(f"areamatch {command} --help", cli, shared, ".", 0)[0])
     with tempfile.TemporaryDirectory(prefix="cli_examples_") as scratch:
         os.symlink(shared / "maps", pathlib.Path(scratch) / "maps")
         for block in blocks:
@@ -155,6 +232,7 @@ def main():
             for command in block.commands:
                 output, status = run(command.text, cli, shared, scratch, status)
                 actual = output.rstrip("\n").split("\n") if output.strip() else []
+                printed.append(output)
                 checked += 1
                 if matches(command.expected, actual):
                     continue
@@ -177,7 +255,16 @@ def main():
         doc.write_text("\n".join(out))
         print(f"cli_examples: rewrote {drift} outputs in {doc}")
     print(f"cli_examples: {checked - drift} of {checked} example commands print what {doc.name} shows")
-    return 1 if drift and not args.update else 0
+    # Numbers quoted in the prose drift with the program as examples do (and are not rewritten by
+    # --update: a sentence around a number may need more than a new number).
+    stale = stale_prose_numbers(doc, lines, "\n".join(printed))
+    stale += undocumented_options(doc, "\n".join(lines), cli, shared)
+    if doc.resolve() == (ROOT / "docs" / "cli.md").resolve():
+        stale += stale_readme_counts(ROOT / "README.md", "\n".join(printed))
+    for problem in stale:
+        print(problem)
+    print(f"cli_examples: {len(stale)} quoted numbers no longer printed or options not documented")
+    return 1 if (drift and not args.update) or stale else 0
 
 
 if __name__ == "__main__":

@@ -294,6 +294,12 @@ TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match
   const Run gated = run("match " + cross + " --gate-max-lower-walls 0");
   CHECK(gated.status == 1);
   CHECK(gated.out.find("gate_max_lower_walls") != std::string::npos);
+  // The maps agree but the gate stays closed: "not sure", never "not the same building", and what
+  // to try when the user knows better.
+  CHECK(gated.out.find("no acceptable match: not sure: the maps agree") != std::string::npos);
+  CHECK(gated.out.find("not the same building") == std::string::npos);
+  CHECK(gated.out.find("--same-building") != std::string::npos);
+  CHECK(run("match " + cross + " --gate-max-lower-walls 0 --json").out.find("\"rejection\": \"not sure\"") != std::string::npos);
   const Run by_agreement = run("match " + cross + " --gate-max-lower-walls 2");
   CHECK(by_agreement.status == 0);
   CHECK(by_agreement.out.find("accepted by the agreement: agreement ") != std::string::npos);
@@ -658,6 +664,11 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
   CHECK(text.status == 0);
   CHECK(text.out.find("placed 2 of 2 maps in the frame of " + dir + "/a/robot.yaml") != std::string::npos);
   CHECK(text.out.find(" doubled (") != std::string::npos);
+  CHECK(text.out.find("drawn in #") == std::string::npos);  // colours are named only for a picture
+  const Run drawn = run("merge " + maps + " --png " + dir + "/drawn.png");
+  CHECK(drawn.out.find("layout.yaml: rotation 0.00 deg") != std::string::npos);
+  CHECK(drawn.out.find(", drawn in #e61717\n") != std::string::npos);  // map 0's colour (map_color), named for the legend
+  CHECK(drawn.out.find(", drawn in #" + std::string("0f9937") + "\n") != std::string::npos);
   CHECK(json.out.find("\"doubled_wall_cells\"") != std::string::npos);
   // --non-rigid: the robot map bent onto the layout, its warp's figures in the JSON.
   const Run bent = run("merge " + maps + " --json --non-rigid --bend-length 5 --png " + dir + "/bent.png", false);

@@ -577,6 +577,9 @@ int run_segment(const std::vector<std::string>& tokens) {
 // --------------------------------------------------------------------------------------- match
 
 // The options of matching one pair, shared by match and warp.
+// The help texts below say "--threads N ... (default 2"; keep them with the constant.
+static_assert(areamatch::default_program_threads == 2, "update the help texts' --threads default");
+
 const char* kPairOptionsHelp =
     "  --source-resolution R   metres per pixel of SOURCE (default: its YAML, else 0.05)\n"
     "  --dest-resolution R     metres per pixel of DEST (default: its YAML, else 0.05)\n"
@@ -591,8 +594,9 @@ const char* kPairOptionsHelp =
     "  --min-p-correct P       reject when the calibrated probability that the answer is right is below P\n"
     "                          (default 0: off; see docs/evaluation.md)\n"
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
-    "  --min-agreement A       reject when the maps agree less than A under the best transform: not the\n"
-    "                          same building (default 0.835; 0 with --gate-max-lower-walls 2 always answers;\n"
+    "  --min-agreement A       reject when the maps agree less than A under the best transform and the\n"
+    "                          model is not sure (default 0.835; 0 with --gate-max-lower-walls 2 and --gate-min-overlap 0\n"
+    "                          always answers;\n"
     "                          see docs/evaluation.md)\n"
     "  --gate-max-lower-walls W  at or above --min-agreement, accept on the agreement alone only where the\n"
     "                          lower of the two wall agreements is at most W (default 0.7; above 1: always)\n"
@@ -627,7 +631,7 @@ areamatch::MapPairOptions map_pair_options(const Args& args) {
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
-  options.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
+  options.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(areamatch::default_program_threads));
   return options;
 }
 
@@ -644,8 +648,9 @@ std::string acceptance_line(const areamatch::MatchResult& result, const areamatc
          format_double(params.decision.accept_p_correct) + ": the model alone would not have accepted it)";
 }
 
-/// What a user can try after a rejection, from the options that were not given.
-std::vector<std::string> rejection_hints(const areamatch::MapPairOptions& options) {
+/// What a user can try after a rejection, from what the refusal says and the options that were
+/// not given.
+std::vector<std::string> rejection_hints(const areamatch::MatchResult& result, const areamatch::MapPairOptions& options) {
   std::vector<std::string> hints;
   if (!options.allow_reflection) {
     hints.push_back("mirrored answers were not tried: if one map may be mirrored (its y axis flipped), try --allow-reflection");
@@ -653,6 +658,13 @@ std::vector<std::string> rejection_hints(const areamatch::MapPairOptions& option
   if (!options.source_door_width_m && !options.dest_door_width_m) {
     hints.push_back("both maps were segmented with the default door width: if their rooms split differently, try --door-width W "
                     "(the widest door, metres)");
+  }
+  // Last, after what may find a better answer: "not sure" is not "different".
+  if (result.rejection == areamatch::Rejection::not_sure) {
+    hints.push_back(std::string(hints.empty() ? "" : "if that does not help: ") +
+                    "not sure is not 'different': if you know both maps show the same building, `areamatch assess SOURCE DEST "
+                    "--same-building` measures SOURCE under this transform, and --min-agreement 0 --gate-max-lower-walls 2 "
+                    "--gate-min-overlap 0 accepts it here, at your own risk");
   }
   return hints;
 }
@@ -673,8 +685,12 @@ const std::string kMatchHelp =
     "  agreement   how well the two maps agree under the answer, 0-1: the walls each way and the shared free space\n"
     "  p_correct   the calibrated probability that the answer is right (a model fitted on real and generated pairs)\n"
     "  confidence  the score's margin over the best answer that differs (another turn or place); small: ambiguous\n"
-    "An answer is accepted when p_correct >= 0.85, or when the agreement passes --min-agreement where the model\n"
-    "underrates cluttered maps; the output says which.\n";
+    "An answer is accepted when p_correct >= " + format_double(areamatch::DecisionParams{}.accept_p_correct) +
+    ", or when the agreement passes --min-agreement where the model\n"
+    "underrates cluttered maps; the output says which. A rejection says 'different places' when the evidence is\n"
+    "against (a whole-map score below --min-score, or p_correct below " +
+    format_double(areamatch::DecisionParams{}.different_places_p) + ") and 'not sure' otherwise: the answer\n"
+    "may be right, and the output says what to try.\n";
 
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, merged(kPairFlags, {"json"}), merged(kPairOptions, {"png", "svg", "labels"}));
@@ -725,7 +741,7 @@ int run_match(const std::vector<std::string>& tokens) {
   }
   if (!result.ok) {
     std::cerr << "areamatch match: no acceptable match: " << result.reason << "\n";
-    for (const std::string& hint : rejection_hints(options)) std::cerr << "areamatch match: " << hint << "\n";
+    for (const std::string& hint : rejection_hints(result, options)) std::cerr << "areamatch match: " << hint << "\n";
     return 1;
   }
   if (!args.flag("json")) std::cout << acceptance_line(result, options) << "\n";
@@ -1000,6 +1016,13 @@ const char* kMergeHelp =
     "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
     "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
 
+/// "#rrggbb", as a picture's colour is named in text.
+std::string hex_color(const areamatch::Rgb& c) {
+  char text[8];
+  std::snprintf(text, sizeof text, "#%02x%02x%02x", c[0], c[1], c[2]);
+  return text;
+}
+
 int run_merge(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "non-rigid", "help"},
                   {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
@@ -1042,7 +1065,7 @@ int run_merge(const std::vector<std::string>& tokens) {
   }
   if (const auto v = args.number("control-spacing", true)) merge_params.warp.control_spacing_m = *v;
   if (const auto v = args.number("bend-length", true)) merge_params.warp.bend_length_m = *v;
-  merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(2));
+  merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(areamatch::default_program_threads));
   // The matcher's options as `areamatch match` sets them (its threads stay 1: merging spreads pairs).
   areamatch::MapPairOptions match_options;
   match_options.allow_reflection = args.flag("allow-reflection");
@@ -1075,7 +1098,12 @@ int run_merge(const std::vector<std::string>& tokens) {
     if (ext != ".yaml" && ext != ".yml") throw UsageError("--out must name a .yaml file (the PGM is written beside it), got '" + *out + "'");
     areamatch::save_map(result.merged, fs::path(*out).replace_extension(".pgm").string());
   }
-  if (const auto png = args.text("png")) areamatch::write_png(*png, areamatch::render_merge(result, grid_pointers));
+  // The picture's legend names maps by file name without its extension (the whole path where two share one).
+  std::vector<std::string> names;
+  for (const auto& path : paths) names.push_back(fs::path(path).stem().string());
+  for (std::size_t i = 0; i < names.size(); ++i)
+    if (std::count(names.begin(), names.end(), names[i]) > 1) names[i] = paths[i];
+  if (const auto png = args.text("png")) areamatch::write_png(*png, areamatch::render_merge(result, grid_pointers, names));
   const double total_s = seconds(start, clock::now());
 
   if (args.flag("json")) {
@@ -1098,6 +1126,10 @@ int run_merge(const std::vector<std::string>& tokens) {
                 << format_fixed(100.0 * result.double_walls.share(), 1) << " %: a parallel wall "
                 << format_fixed(merge_params.double_walls.min_gap_m, 2) << "-" << format_fixed(merge_params.double_walls.max_gap_m, 2)
                 << " m away across free space)\n";
+      constexpr double doubled_hint_share = 0.05;  // one wall in twenty doubled: plain to see, worth bending
+      if (!merge_params.non_rigid && result.double_walls.share() >= doubled_hint_share) {
+        std::cout << "  doubled walls: the maps bend against each other; --non-rigid bends each onto the reference\n";
+      }
     }
     for (std::size_t i = 0; i < paths.size(); ++i) {
       const auto& m = result.maps[i];
@@ -1106,6 +1138,7 @@ int run_merge(const std::vector<std::string>& tokens) {
       std::cout << "  " << paths[i] << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2) << " deg, translation ("
                 << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3) << ") m"
                 << (T.reflected ? ", reflected" : "") << ", residual " << format_fixed(m.residual_m, 3) << " m";
+      if (args.text("png")) std::cout << ", drawn in " << hex_color(areamatch::map_color(static_cast<int>(i)));
       if (m.warp) {
         std::cout << "; warp: walls " << format_fixed(m.warp->rigid_median_m, 3) << " -> " << format_fixed(m.warp->warped_median_m, 3)
                   << " m median off the reference's, moved up to " << format_fixed(m.warp->max_displacement_m, 2) << " m";

@@ -17,7 +17,7 @@ maps = [areamatch.synthetic.make_robot_map(building, s, rotation_rad=0.3*s, reso
 
 def work(robot_maps):
     for m in robot_maps:
-        areamatch.match(m, building.layout)
+        areamatch.match(m, building.layout, threads=1)  # one library thread each: Python's threads do the sharing
 
 
 work(maps[:1])  # warm up

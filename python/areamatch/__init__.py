@@ -13,6 +13,7 @@ OSError (files). See docs/python.md.
 """
 
 from ._core import (  # noqa: F401
+    DEFAULT_THREADS,
     FREE,
     OCCUPIED,
     UNKNOWN,
@@ -33,6 +34,8 @@ from ._core import (  # noqa: F401
     segment,
 )
 from . import ros, synthetic  # noqa: F401
+
+import inspect as _inspect
 
 
 def _takes_maps(function, names):
@@ -63,7 +66,29 @@ def _from_dict(key, doc):
 # The parts of a result that the JSON already spells out are read from it, so the keys and their
 # meaning are those of `areamatch match --json` / `merge --json` (docs/cli.md).
 Result.evidence = _from_dict("evidence", "How much the maps agree under the result (dict).")
-Result.matched_areas = _from_dict("matched_areas", "Room correspondences: source and dest area ids (list of dicts).")
+class MatchedArea(dict):
+    """One room correspondence of a match, read as attributes (`a.source`, `a.dest`, `a.iou`) or,
+    as before, as dict keys: source and dest (area ids), overlap, iou, local_rotation_deg,
+    local_translation_m (the room's own fit: its transform, source world -> destination world, beside
+    the whole map's T_dest_source), wall_agreement."""
+
+    def __getattr__(self, key):
+        try:
+            return self[key]
+        except KeyError:
+            raise AttributeError(f"MatchedArea has no field {key!r}; it has {', '.join(self)}") from None
+
+    def __repr__(self):
+        return (f"MatchedArea(source={self['source']}, dest={self['dest']}, iou={self['iou']:.3f}, "
+                f"local_rotation_deg={self['local_rotation_deg']:.2f})")
+
+
+Result.matched_areas = property(
+    lambda self: [MatchedArea(a) for a in self.to_dict()["matched_areas"]],
+    doc="Room correspondences (list of MatchedArea: source, dest, overlap, iou, local_rotation_deg, ...).")
+Result.rejection = property(
+    lambda self: self.to_dict().get("rejection"),
+    doc="What a refusal says of the maps: 'different places', 'not sure' or 'no answer' (None when ok).")
 Result.statistics = _from_dict("statistics", "Counts of areas, pairs, hypotheses (dict).")
 Result.timings = _from_dict("timings", "Seconds per step (dict).")
 Result.margin_different = _from_dict("margin_different", "Margin over the best clearly different transform.")
@@ -74,7 +99,7 @@ MergeResult.timings = _from_dict("timings", "Seconds per step (dict).")
 
 def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None,
           gate_max_lower_walls=None, gate_min_overlap_m2=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0,
-          until_connected=False, same_side=True, threads=1, names=None, build_merged_map=True, non_rigid=False,
+          until_connected=False, same_side=True, threads=DEFAULT_THREADS, names=None, build_merged_map=True, non_rigid=False,
           control_spacing=None, bend_length=None):
     """Places several maps of one building in the frame of maps[reference] and fuses them.
 
@@ -84,7 +109,9 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
     `same_side`: refine each accepted match by ICP that pairs walls only with walls facing the
     same way (MergeParams::refine_same_side). `non_rigid`: bend each map onto the reference's walls
     before fusing (`areamatch merge --non-rigid`; `control_spacing`, `bend_length` in metres shape
-    the warps). Returns a MergeResult; `names` label the maps in its JSON (default "map i").
+    the warps). Returns a MergeResult; `names` label the maps in its JSON and its picture's legend
+    (default "map i"). `threads`: as the `areamatch` program, DEFAULT_THREADS (2); any count gives
+    the same result.
     """
     maps = list(maps)
     if not all(isinstance(m, Map) for m in maps):
@@ -100,7 +127,11 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
                          control_spacing=control_spacing, bend_length=bend_length)
 
 
+# A pybind11 function's __doc__ opens with its signature; this Python one's does too.
+merge.__doc__ = f"merge{_inspect.signature(merge)} -> MergeResult\n\n" + merge.__doc__
+
+
 __all__ = [
-    "FREE", "OCCUPIED", "UNKNOWN", "Area", "AreaGraph", "Assessment", "Map", "Matcher", "MergeResult", "Passage", "Picture",
+    "DEFAULT_THREADS", "FREE", "OCCUPIED", "UNKNOWN", "Area", "AreaGraph", "Assessment", "Map", "MatchedArea", "Matcher", "MergeResult", "Passage", "Picture",
     "PreparedMap", "Result", "__version__", "assess", "load_map", "match", "merge", "ros", "segment", "synthetic",
 ]

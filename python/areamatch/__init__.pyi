@@ -1,13 +1,23 @@
-from typing import Optional, Sequence
+from typing import Any, Dict, List, Optional, Sequence
 
 from . import ros as ros, synthetic as synthetic
-from ._core import (FREE as FREE, OCCUPIED as OCCUPIED, UNKNOWN as UNKNOWN, Area as Area, AreaGraph as AreaGraph,
+from ._core import (DEFAULT_THREADS as DEFAULT_THREADS, FREE as FREE, OCCUPIED as OCCUPIED, UNKNOWN as UNKNOWN, Area as Area, AreaGraph as AreaGraph,
                     Assessment as Assessment, Map as Map, Matcher as Matcher, MergeResult as MergeResult, Passage as Passage, Picture as Picture,
                     PreparedMap as PreparedMap, Result as Result, __version__ as __version__, assess as assess, load_map as load_map,
                     match as match, segment as segment)
 
+class MatchedArea(Dict[str, Any]):
+    source: int
+    dest: int
+    overlap: float
+    iou: float
+    local_rotation_deg: float
+    local_translation_m: List[float]
+    wall_agreement: float
+
 def merge(maps: Sequence[Map], *, reference: int = ..., door_width: Optional[float] = ..., allow_reflection: bool = ...,
           min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
-          min_p_correct: Optional[float] = ..., resolution: Optional[float] = ...,
+          gate_min_overlap_m2: Optional[float] = ..., min_p_correct: Optional[float] = ..., resolution: Optional[float] = ...,
           wall_share: float = ..., max_residual: float = ..., until_connected: bool = ..., same_side: bool = ..., threads: int = ...,
-          names: Optional[Sequence[str]] = ..., build_merged_map: bool = ...) -> MergeResult: ...
+          names: Optional[Sequence[str]] = ..., build_merged_map: bool = ..., non_rigid: bool = ...,
+          control_spacing: Optional[float] = ..., bend_length: Optional[float] = ...) -> MergeResult: ...

@@ -6,6 +6,7 @@ import numpy as np
 import numpy.typing as npt
 
 __version__: str
+DEFAULT_THREADS: int
 FREE: int
 OCCUPIED: int
 UNKNOWN: int
@@ -100,7 +101,8 @@ class Result:
     dest_graph: AreaGraph
     # Read from to_dict() (areamatch/__init__.py):
     evidence: Dict[str, Any]
-    matched_areas: List[Dict[str, Any]]
+    matched_areas: List[Dict[str, Any]]  # MatchedArea objects: dicts read as attributes too
+    rejection: Optional[str]  # 'different places', 'not sure', 'no answer'; None when ok
     statistics: Dict[str, int]
     timings: Dict[str, float]
     margin_different: Optional[float]

@@ -313,8 +313,10 @@ void translate_exceptions() {
 }  // namespace
 
 PYBIND11_MODULE(_core, m) {
+
   m.doc() = "areamatch: align 2D occupancy-grid maps of one building and say which room is which";
   m.attr("__version__") = am::version_string;
+  m.attr("DEFAULT_THREADS") = am::default_program_threads;  // as the `areamatch` program
   m.attr("FREE") = static_cast<int>(am::CellState::free);
   m.attr("OCCUPIED") = static_cast<int>(am::CellState::occupied);
   m.attr("UNKNOWN") = static_cast<int>(am::CellState::unknown);
@@ -521,7 +523,7 @@ PYBIND11_MODULE(_core, m) {
       py::arg("door_width") = py::none(), py::arg("source_door_width") = py::none(), py::arg("dest_door_width") = py::none(),
       py::arg("k") = py::none(), py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
       py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
-      py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = 1, release_gil(),
+      py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = am::default_program_threads, release_gil(),
       "Segments both maps and matches source onto dest, as `areamatch match` (same options, same result).");
 
   // ------------------------------------------------------------------ Prepared maps, merging
@@ -529,6 +531,8 @@ PYBIND11_MODULE(_core, m) {
       .def_property_readonly("map", &Prepared::grid)
       .def_property_readonly("graph", &Prepared::graph);
 
+  // Declared before Matcher so that Matcher.merge's signature names it (not the C++ type).
+  py::class_<MergeRun> merge_result(m, "MergeResult", "Several maps placed in one frame, with the merged map.");
   py::class_<PyMatcher>(m, "Matcher", "The default matcher with options, for prepared maps and merging.")
       .def(py::init([](std::optional<double> door_width, bool allow_reflection, std::optional<std::size_t> k,
                        std::optional<double> min_score, std::optional<double> min_agreement,
@@ -545,7 +549,7 @@ PYBIND11_MODULE(_core, m) {
            py::kw_only(), py::arg("door_width") = py::none(), py::arg("allow_reflection") = false, py::arg("k") = py::none(),
            py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
            py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
-           py::arg("min_p_correct") = py::none(), py::arg("threads") = 1)
+           py::arg("min_p_correct") = py::none(), py::arg("threads") = am::default_program_threads)
       .def("prepare", [](const PyMatcher& p, const am::OccupancyGrid& grid) { return p.matcher.prepare(grid); }, py::arg("map"),
            release_gil(), "Segments the map and builds its match data once.")
       .def(
@@ -555,7 +559,7 @@ PYBIND11_MODULE(_core, m) {
             am::detail::for_each_index(grids.size(), threads, [&](std::size_t i) { out[i] = p.matcher.prepare(grids[i]); });
             return out;
           },
-          py::arg("maps"), py::arg("threads") = 1, release_gil(),
+          py::arg("maps"), py::arg("threads") = am::default_program_threads, release_gil(),
           "prepare() of every map, `threads` at a time (the same maps for any count; errors: the first map's)")
       .def("match", [](const PyMatcher& p, const Prepared& source, const Prepared& dest) { return match_prepared(p, nullptr, &source, dest); },
            py::arg("source"), py::arg("dest"), release_gil())
@@ -575,12 +579,11 @@ PYBIND11_MODULE(_core, m) {
           },
           py::arg("maps"), py::kw_only(), py::arg("reference") = py::none(), py::arg("resolution") = py::none(),
           py::arg("wall_share") = 0.5, py::arg("max_residual") = 1.0, py::arg("until_connected") = false,
-          py::arg("same_side") = true, py::arg("threads") = 1, py::arg("names") = std::vector<std::string>{}, py::arg("build_merged_map") = true,
+          py::arg("same_side") = true, py::arg("threads") = am::default_program_threads, py::arg("names") = std::vector<std::string>{}, py::arg("build_merged_map") = true,
           py::arg("non_rigid") = false, py::arg("control_spacing") = py::none(), py::arg("bend_length") = py::none(),
           release_gil(), "Places prepared maps in the frame of maps[reference] and fuses them (as `areamatch merge`).");
 
-  py::class_<MergeRun>(m, "MergeResult", "Several maps placed in one frame, with the merged map.")
-      .def_property_readonly("ok", [](const MergeRun& r) { return r.result.ok; }, "every map placed")
+  merge_result.def_property_readonly("ok", [](const MergeRun& r) { return r.result.ok; }, "every map placed")
       .def_property_readonly("reference", [](const MergeRun& r) { return r.result.reference; })
       .def_property_readonly("maps",
                              [](const MergeRun& r) {
@@ -621,9 +624,20 @@ PYBIND11_MODULE(_core, m) {
             std::vector<const am::OccupancyGrid*> grids;
             for (const auto& g : r.grids) grids.push_back(&g);
             if (r.result.merged.empty()) throw am::parameter_error("no merged map was built");
-            return am::render_merge(r.result, grids);
+            return am::render_merge(r.result, grids, r.names);
           },
-          release_gil(), "the picture of `areamatch merge --png`");
+          release_gil(), "the picture of `areamatch merge --png` (each map's walls in its colour, a legend with `names`)")
+      .def("__repr__", [](const MergeRun& r) {
+        std::size_t placed = 0;
+        for (const auto& map : r.result.maps) placed += map.placed;
+        std::string text = "<areamatch.MergeResult " + std::string(r.result.ok ? "ok" : "not ok") + ", " + std::to_string(placed) +
+                           " of " + std::to_string(r.result.maps.size()) + " maps placed";
+        if (!r.result.merged.empty()) {
+          text += ", merged " + std::to_string(r.result.merged.width()) + "x" + std::to_string(r.result.merged.height()) +
+                  ", doubled walls " + am::detail::format_fixed(100.0 * r.result.double_walls.share(), 1) + " %";
+        }
+        return text + ">";
+      });
 
   // -------------------------------------------------------------------------------- Assess
   py::class_<AssessRun>(m, "Assessment", "A map assessed against a reference (docs/assessment.md).")

@@ -50,6 +50,12 @@ def test_match_finds_the_truth(robot, building):
     assert np.linalg.norm((result.T_dest_source @ centre)[:2] - (robot.T_dest_source @ centre)[:2]) < 0.1
     assert 0.0 <= result.p_correct <= 1.0 and result.evidence["agreement"] > 0.8
     assert result.matched_areas and {"source", "dest"} <= set(result.matched_areas[0])
+    first = result.matched_areas[0]
+    assert isinstance(first, areamatch.MatchedArea) and first.source == first["source"] and first.dest == first["dest"]
+    assert repr(first).startswith("MatchedArea(source=")
+    with pytest.raises(AttributeError, match="no field 'nope'"):
+        first.nope
+    assert result.rejection is None
     assert result.timings["total_s"] > 0.0
     assert np.asarray(result.picture()).ndim == 3
 
@@ -58,6 +64,7 @@ def test_match_rejects_another_building(robot):
     other = areamatch.synthetic.generate_building(1234, width_m=24.0, height_m=26.0).layout
     result = areamatch.match(robot.map, other)
     assert not result.ok and result.reason
+    assert result.rejection in ("different places", "not sure") and result.reason.startswith(result.rejection + ": ")
 
 
 def test_the_agreement_gate_is_configurable(robot):
@@ -76,6 +83,13 @@ def test_match_without_areas_is_a_rejection_not_a_crash(building):
     walls = areamatch.Map.from_array(np.zeros((50, 50), np.uint8), 0.05)
     result = areamatch.match(walls, building.layout)
     assert not result.ok and "no areas" in result.reason
+    assert result.rejection == "no answer"
+
+
+def test_threads_default_as_the_program():
+    assert areamatch.DEFAULT_THREADS == 2
+    assert areamatch.merge.__doc__.startswith("merge(maps, *, reference=0,")
+    assert "threads=2" in areamatch.merge.__doc__.split("\n")[0]
 
 
 def test_match_option_errors(robot, building):

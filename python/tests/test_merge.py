@@ -27,7 +27,10 @@ def test_merge_places_every_map(building):
     assert len(result.edges) == 6 and all("used" in e for e in result.edges)
     merged = result.merged
     assert isinstance(merged, areamatch.Map) and merged.resolution == building.layout.resolution
-    assert np.asarray(result.picture()).shape == (merged.height, merged.width, 3)
+    # The merged map, and below it the legend naming each map's colour.
+    picture = np.asarray(result.picture())
+    assert picture.shape[1] >= merged.width and picture.shape[0] > merged.height and picture.shape[2] == 3
+    assert repr(result).startswith("<areamatch.MergeResult ok, 4 of 4 maps placed, merged ")
     for source, dest, match in result.edge_results():
         assert 0 <= source < 4 and 0 <= dest < 4 and isinstance(match, areamatch.Result)
     assert result.timings["refine_s"] > 0

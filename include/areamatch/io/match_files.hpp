@@ -53,6 +53,12 @@ struct MapPairOptions {
   unsigned threads = 1;
 };
 
+/// The thread count the `areamatch` program and the Python module use unless told (`--threads`,
+/// `threads=`): a pair's two maps loaded and segmented side by side, two pairs of a merge at once.
+/// The library's own default stays one thread (`MapPairOptions::threads`, `MatcherParams::threads`):
+/// a program that embeds it chooses. Results are the same for any count.
+inline constexpr unsigned default_program_threads = 2;
+
 /// Everything one end-to-end run produced: the maps, their Area Graphs and the match, with
 /// `result.timings` covering loading too (`total_s` = load + segment both + match). With
 /// `estimate_scale`, `source_graph` is the source's graph at the estimated scale.
