@@ -35,7 +35,7 @@ struct Prepared {
 
 areamatch::Matcher<> matcher_for(const areamatch::MapPairOptions& options) {
   areamatch::Matcher<> matcher;
-  matcher.params.allow_reflection = options.allow_reflection;
+  areamatch::detail::apply_match_options(matcher.params, options);
   return matcher;
 }
 

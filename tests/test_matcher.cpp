@@ -4,6 +4,7 @@
 #include <areamatch/detail/random.hpp>
 #include <areamatch/evaluation.hpp>
 #include <areamatch/io/json.hpp>
+#include <areamatch/io/match_files.hpp>
 
 #include <doctest/doctest.h>
 
@@ -1023,4 +1024,31 @@ TEST_CASE("a refusal says 'different places' only when the evidence is against, 
   CHECK_FALSE(empty.ok);
   CHECK(empty.rejection == Rejection::no_answer);
   CHECK(to_string(Rejection::not_sure) == std::string("not sure"));
+}
+
+TEST_CASE("match_grids keeps a matcher's own settings where the options leave them unset") {
+  // apply_match_options used to write allow_reflection and threads whatever the options said,
+  // so a matcher's own allow_reflection was silently turned off (issue 45, item 1).
+  BuildingParams small;
+  small.width_m = 20;
+  small.height_m = 14;
+  const auto building = generate_building(small, 5);
+  RobotMapParams rp;
+  rp.rotation_rad = 75.0 * pi / 180.0;
+  rp.mirror = true;
+  const auto robot = make_robot_map(building, rp, 5);
+  Matcher<> mine;
+  mine.params.allow_reflection = true;
+  mine.params.threads = 2;
+  const MapPairRun kept = match_grids(mine, robot.grid, building.layout);
+  CHECK(kept.result.ok);
+  CHECK(kept.result.T_dest_source.reflected);
+  MapPairOptions off;
+  off.allow_reflection = false;  // set: it wins over the matcher's
+  const MapPairRun overridden = match_grids(mine, robot.grid, building.layout, off);
+  CHECK_FALSE(overridden.result.T_dest_source.reflected);
+  MatcherParams applied = mine.params;
+  detail::apply_match_options(applied, MapPairOptions{});
+  CHECK(applied.allow_reflection);
+  CHECK(applied.threads == 2u);
 }

@@ -119,7 +119,7 @@ TEST_CASE("prepared maps give the same results as their grids on every shared pa
     REQUIRE(judged.run);
     const MapPairRun& run = *judged.run;
     Matcher<> matcher;
-    matcher.params.allow_reflection = pair_options(judged.pair, EvalOptions{}).allow_reflection;
+    detail::apply_match_options(matcher.params, pair_options(judged.pair, EvalOptions{}));
     const MatchResult prepared =
         matcher.match(matcher.prepare(run.source, run.source_graph), matcher.prepare(run.dest, run.dest_graph));
     const std::string a = match_result_json(prepared), b = match_result_json(run.result);

@@ -652,7 +652,7 @@ std::string acceptance_line(const areamatch::MatchResult& result, const areamatc
 /// not given.
 std::vector<std::string> rejection_hints(const areamatch::MatchResult& result, const areamatch::MapPairOptions& options) {
   std::vector<std::string> hints;
-  if (!options.allow_reflection) {
+  if (!options.allow_reflection.value_or(false)) {
     hints.push_back("mirrored answers were not tried: if one map may be mirrored (its y axis flipped), try --allow-reflection");
   }
   if (!options.source_door_width_m && !options.dest_door_width_m) {

@@ -36,7 +36,9 @@ struct MapPairOptions {
   std::optional<double> source_door_width_m;  ///< `VoronoiSegmenter` door width of the source
   std::optional<double> dest_door_width_m;
   bool paper = false;                         ///< `PaperMatcher` instead of `Matcher<>` (overloads without a matcher)
-  bool allow_reflection = false;              ///< also try the source's mirror image
+  /// Also try the source's mirror image. Unset: the matcher's own (`MatcherParams::allow_reflection`,
+  /// false for the overloads without a matcher).
+  std::optional<bool> allow_reflection;
   std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
   std::optional<double> min_score;            ///< reject below this whole-map score
   std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
@@ -49,8 +51,9 @@ struct MapPairOptions {
   std::optional<double> min_p_correct;        ///< reject below this p_correct (match/decision.hpp)
   bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
   /// Load and segment the two maps side by side on this many threads (and build their match data
-  /// so: `MatcherParams::threads`); the same result for any count.
-  unsigned threads = 1;
+  /// so: `MatcherParams::threads`); the same result for any count. Unset: the matcher's own (1 for
+  /// the overloads without a matcher).
+  std::optional<unsigned> threads;
 };
 
 /// The thread count the `areamatch` program and the Python module use unless told (`--threads`,
@@ -89,8 +92,10 @@ Segmenter segmenter_with_door(Segmenter segmenter, const std::optional<double>& 
 /// Sets what `options` asks of the matcher's parameters (the load, door-width and `paper`
 /// options are the caller's).
 inline void apply_match_options(MatcherParams& params, const MapPairOptions& options) {
-  params.allow_reflection = options.allow_reflection;
-  params.threads = options.threads;
+  // Only what is set: a matcher's own settings are kept otherwise (they were overwritten by the
+  // defaults of these two until 2026-12-05).
+  if (options.allow_reflection) params.allow_reflection = *options.allow_reflection;
+  if (options.threads) params.threads = *options.threads;
   if (options.k) params.k = *options.k;
   if (options.min_score) params.min_score = *options.min_score;
   if (options.min_agreement) params.min_agreement = *options.min_agreement;
@@ -125,7 +130,7 @@ MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid
   M configured = matcher;
   apply_match_options(configured.params, options);
   if (options.estimate_scale) {
-    for_each_index(2, options.threads, make_map);
+    for_each_index(2, configured.params.threads, make_map);
     const auto match_start = clock::now();
     configured.params.estimate_scale = true;
     configured.segmenter = segmenter_with_door(configured.segmenter, options.source_door_width_m);
