@@ -1099,10 +1099,10 @@ int run_merge(const std::vector<std::string>& tokens) {
     areamatch::save_map(result.merged, fs::path(*out).replace_extension(".pgm").string());
   }
   // The picture's legend names maps by file name without its extension (the whole path where two share one).
-  std::vector<std::string> names;
-  for (const auto& path : paths) names.push_back(fs::path(path).stem().string());
-  for (std::size_t i = 0; i < names.size(); ++i)
-    if (std::count(names.begin(), names.end(), names[i]) > 1) names[i] = paths[i];
+  std::vector<std::string> stems, names;
+  for (const auto& path : paths) stems.push_back(fs::path(path).stem().string());
+  for (std::size_t i = 0; i < stems.size(); ++i)
+    names.push_back(std::count(stems.begin(), stems.end(), stems[i]) > 1 ? paths[i] : stems[i]);
   if (const auto png = args.text("png")) areamatch::write_png(*png, areamatch::render_merge(result, grid_pointers, names));
   const double total_s = seconds(start, clock::now());
 
