@@ -25,6 +25,7 @@ Exit status: 0 all examples as shown, 1 drift (a diff per command, or a stale nu
 
 import argparse
 import difflib
+import functools
 import os
 import pathlib
 import re
@@ -150,6 +151,12 @@ def stale_prose_numbers(doc, lines, printed):
             for i, line in prose_lines(lines) for number in QUOTED_NUMBER.findall(line) if number not in known]
 
 
+@functools.lru_cache(maxsize=None)
+def command_help(cli, shared, command):
+    """(text, status) of `areamatch COMMAND --help`, run once per command."""
+    return run(f"areamatch {command} --help", cli, shared, ".", 0)
+
+
 def undocumented_options(doc, text, cli, shared):
     """The options a command's --help lists that its `## command` section of the page never names."""
     sections = {}
@@ -173,7 +180,7 @@ def undocumented_options(doc, text, cli, shared):
 
     problems = []
     for command in sections:
-        help_text, status = run(f"areamatch {command} --help", cli, shared, ".", 0)
+        help_text, status = command_help(cli, shared, command)
         if status != 0:
             continue
         for option in sorted(set(re.findall(r"^\s+(--[a-z][a-z-]*)", help_text, re.M))):
@@ -220,7 +227,7 @@ def main():
     blocks = parse(lines)
     printed = []  # everything the examples and --help print, for the prose's quoted numbers
     for command in sorted(set(re.findall(r"^\$ areamatch (\w+)", doc.read_text(), re.M))):
-        printed.append(run(f"areamatch {command} --help", cli, shared, ".", 0)[0])
+        printed.append(command_help(cli, shared, command)[0])
     with tempfile.TemporaryDirectory(prefix="cli_examples_") as scratch:
         os.symlink(shared / "maps", pathlib.Path(scratch) / "maps")
         for block in blocks:

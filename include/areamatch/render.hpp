@@ -7,6 +7,7 @@
 #include "detail/tiny_font.hpp"
 #include "grid.hpp"
 #include "image.hpp"
+#include "match/occupied_walls.hpp"
 #include "match/result.hpp"
 #include "merge.hpp"
 #include "segment/skeleton.hpp"
@@ -327,20 +328,11 @@ inline RgbImage downscaled(const RgbImage& image, int factor) {
 
 namespace detail {
 
-/// `mask` (row-major, `width` × `height`) grown by `radius` pixels (a square), so that a one-pixel
-/// line is seen at a picture's size.
-inline std::vector<std::uint8_t> thickened(const std::vector<std::uint8_t>& mask, int width, int height, int radius) {
-  if (radius <= 0) return mask;
-  std::vector<std::uint8_t> rows(mask.size(), 0), out(mask.size(), 0);
-  for (int r = 0; r < height; ++r)
-    for (int c = 0; c < width; ++c)
-      if (mask[static_cast<std::size_t>(r) * width + c])
-        for (int x = std::max(0, c - radius); x <= std::min(width - 1, c + radius); ++x) rows[static_cast<std::size_t>(r) * width + x] = 1;
-  for (int r = 0; r < height; ++r)
-    for (int c = 0; c < width; ++c)
-      if (rows[static_cast<std::size_t>(r) * width + c])
-        for (int y = std::max(0, r - radius); y <= std::min(height - 1, r + radius); ++y) out[static_cast<std::size_t>(y) * width + c] = 1;
-  return out;
+/// Paints the set cells of `mask` (a raster the size of `image`) in `color`.
+inline void paint(RgbImage& image, const BitRaster& mask, const Rgb& color) {
+  for (int r = 0; r < mask.height; ++r)
+    for (int c = 0; c < mask.width; ++c)
+      if (mask.test(c, r)) image.set(c, r, color[0], color[1], color[2]);
 }
 
 /// A colour mixed towards white: `share` of `color`, the rest white.
@@ -393,7 +385,7 @@ inline RgbImage render_merge(const MergeResult& result, const std::vector<const 
   const OccupancyGrid& merged = result.merged;
   RgbImage image = render_grid(merged, colors);
   const int radius = std::max(1, std::max(merged.width(), merged.height()) / 1200);
-  std::vector<std::vector<std::uint8_t>> kept(maps.size());
+  std::vector<detail::BitRaster> kept(maps.size());
   std::vector<detail::LegendEntry> legend;
   for (std::size_t m = 0; m < maps.size(); ++m) {
     const std::string name = m < names.size() ? names[m] : "map " + std::to_string(m);
@@ -402,17 +394,17 @@ inline RgbImage render_merge(const MergeResult& result, const std::vector<const 
     if (!placed) continue;
     const std::vector<std::uint8_t> walls = result.maps[m].warp ? detail::source_walls(merged, *maps[m], result.maps[m].warp->field)
                                                                 : detail::source_walls(merged, *maps[m], result.maps[m].T_reference_map);
-    std::vector<std::uint8_t> outvoted(walls.size(), 0);
-    kept[m].assign(walls.size(), 0);
-    for (std::size_t i = 0; i < walls.size(); ++i) {
-      if (!walls[i]) continue;
-      (merged.cells()[i] == CellState::free ? outvoted : kept[m])[i] = 1;
+    detail::BitRaster outvoted(merged.width(), merged.height());
+    kept[m] = detail::BitRaster(merged.width(), merged.height());
+    for (int row = 0; row < merged.height(); ++row) {
+      for (int col = 0; col < merged.width(); ++col) {
+        if (walls[merged.index(col, row)]) (merged.is_free(col, row) ? outvoted : kept[m]).set(col, row);
+      }
     }
-    detail::paint(image, detail::thickened(outvoted, merged.width(), merged.height(), radius - 1),
-                  detail::paled(map_color(static_cast<int>(m)), 0.35));
+    detail::paint(image, detail::dilated(outvoted, radius - 1), detail::paled(map_color(static_cast<int>(m)), 0.35));
   }
   for (std::size_t m = 0; m < maps.size(); ++m) {
-    if (!kept[m].empty()) detail::paint(image, detail::thickened(kept[m], merged.width(), merged.height(), radius), map_color(static_cast<int>(m)));
+    if (!kept[m].words.empty()) detail::paint(image, detail::dilated(kept[m], radius), map_color(static_cast<int>(m)));
   }
   return detail::with_legend(image, "WALLS OF EACH MAP IN ITS COLOUR, PALE WHERE THE MERGED MAP IS FREE", legend);
 }
