@@ -232,6 +232,37 @@ TEST_CASE("match --estimate-scale: a source whose resolution is wrong") {
   CHECK(paper.out.find("estimate_scale needs refine") != std::string::npos);
 }
 
+TEST_CASE("the progress line: on a terminal or when asked, on stderr only, cleared at the end") {
+  const std::string dir = areamatch_test::temp_dir() + "/progress_pair";
+  REQUIRE(run("generate " + dir + " --seed 9 --width 15 --height 11 --rotation 40").status == 0);
+  const std::string match = " " + std::string(AREAMATCH_CLI) + " match " + dir + "/robot.yaml " + dir +
+                            "/layout.yaml --source-resolution 0.08 --door-width 0.9 --estimate-scale --json";
+  // What one stream of a run holds: "out" (stderr dropped) or "err" (stdout dropped).
+  auto stream = [](const std::string& command, bool err) {
+    FILE* pipe = ::popen((command + (err ? " 2>&1 >/dev/null" : " 2>/dev/null")).c_str(), "r");
+    REQUIRE(pipe != nullptr);
+    std::string text;
+    char buffer[4096];
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) text.append(buffer, n);
+    CHECK(::pclose(pipe) == 0);
+    return text;
+  };
+  const std::string clear = "\r\033[K";
+  // Asked for (AREAMATCH_PROGRESS=always draws from the start): the stages on stderr, the line
+  // cleared before the program ends, the JSON on stdout untouched.
+  const std::string err = stream("AREAMATCH_PROGRESS=always" + match, true);
+  INFO(err);
+  CHECK(err.find(clear + "areamatch match: trying scales") != std::string::npos);
+  CHECK(err.size() >= clear.size());
+  CHECK(err.compare(err.size() - clear.size(), clear.size(), clear) == 0);
+  const std::string out = stream("AREAMATCH_PROGRESS=always" + match, false);
+  CHECK(out.find('\r') == std::string::npos);
+  CHECK(out.find("\"scale_estimated\": true") != std::string::npos);
+  // Piped (as here) or told never: no line.
+  CHECK(stream(match, true).find('\r') == std::string::npos);
+  CHECK(stream("AREAMATCH_PROGRESS=never" + match, true).find('\r') == std::string::npos);
+}
+
 TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match exits 1") {
   const std::string dir = areamatch_test::temp_dir() + "/match_bad";
   REQUIRE(run("generate " + dir + " --seed 6 --width 16 --height 12").status == 0);

@@ -16,6 +16,7 @@
 #include <chrono>
 #include <cmath>
 #include <optional>
+#include <stdexcept>
 #include <string>
 #include <thread>
 #include <vector>
@@ -230,6 +231,43 @@ TEST_CASE("the paper preset: right on a pair it can get, a half turn where the w
   CHECK(match_error(half.pixel_transform, clean.pixel_transform, edges, resolution).rotation_error_deg > 170.0);
   REQUIRE(ours.ok);
   CHECK(match_error(ours.pixel_transform, clean.pixel_transform, edges, resolution).correct({3.0, 0.5}));
+}
+
+TEST_CASE("progress: each stage reported in order on the calling thread; the answer unchanged; a throw cancels") {
+  const auto pair = small_mirrored_pair();
+  const OccupancyGrid& robot = pair.second.grid;
+  const OccupancyGrid& layout = pair.first.layout;
+  MatcherParams params;
+  params.allow_reflection = true;
+  const Matcher<> quiet(params);
+  Matcher<> reporting(params);
+  std::vector<std::string> stages;
+  const auto caller = std::this_thread::get_id();
+  bool other_thread = false;
+  reporting.progress = [&](const Progress& p) {
+    stages.emplace_back(p.stage);
+    other_thread = other_thread || std::this_thread::get_id() != caller;
+  };
+  const MatchResult expected = quiet.match(robot, layout);
+  const MatchResult reported = reporting.match(robot, layout);
+  CHECK(stages == std::vector<std::string>{"segment", "prepare", "select", "check"});
+  CHECK_FALSE(other_thread);
+  CHECK(reported.ok == expected.ok);
+  CHECK(reported.T_dest_source.rotation == expected.T_dest_source.rotation);
+  CHECK(reported.T_dest_source.translation == expected.T_dest_source.translation);
+  CHECK(reported.p_correct == expected.p_correct);
+
+  // Onto a prepared map: no "segment" of the destination, the source's still.
+  stages.clear();
+  const auto prepared = reporting.prepare(layout);
+  CHECK(reporting.match(robot, prepared).p_correct == expected.p_correct);
+  CHECK(stages == std::vector<std::string>{"segment", "prepare", "select", "check"});
+
+  // A callback that throws stops the match; the exception reaches the caller.
+  reporting.progress = [](const Progress& p) {
+    if (p.stage == "select") throw std::runtime_error("cancelled");
+  };
+  CHECK_THROWS_WITH_AS(reporting.match(robot, layout), "cancelled", std::runtime_error);
 }
 
 TEST_CASE("maps without areas give a clear not-ok result, never a crash") {

@@ -11,6 +11,7 @@
 #include <algorithm>
 #include <cmath>
 #include <set>
+#include <string>
 #include <vector>
 
 using namespace areamatch;
@@ -212,6 +213,35 @@ TEST_CASE("merge_maps places N robot maps of generated buildings (N = 2, 5, 10, 
     // loses to a wrong one that is then rejected (not placed).
     CHECK(all_right >= 0.95 * buildings);
     CHECK(min_iou >= 0.9);
+  }
+}
+
+TEST_CASE("merge_maps reports its own stages: every match counted, then the poses and the fused map") {
+  MatcherParams params;
+  params.allow_reflection = true;
+  Matcher<> matcher(params);
+  const auto c = areamatch_test::merge_case(3001, 3, /*mirror_one=*/true, true);
+  std::vector<Matcher<>::PreparedMap> maps;
+  for (const auto& robot : c.robots) maps.push_back(matcher.prepare(robot.grid));
+  const MergeResult expected = merge_maps(matcher, maps);
+  std::vector<std::string> stages;
+  std::vector<std::size_t> counted;
+  matcher.progress = [&](const Progress& p) {  // never two calls at once: no lock needed here
+    stages.emplace_back(p.stage);
+    if (p.stage == "match") {
+      CHECK(p.total == 3);  // three maps: three pairs
+      counted.push_back(p.done);
+    }
+  };
+  const MergeResult reported = merge_maps(matcher, maps);
+  CHECK(counted == std::vector<std::size_t>{0, 1, 2, 3});
+  REQUIRE(stages.size() == 6);
+  CHECK(stages[4] == "poses");
+  CHECK(stages[5] == "fuse");
+  REQUIRE(reported.maps.size() == expected.maps.size());
+  for (std::size_t m = 0; m < expected.maps.size(); ++m) {
+    CHECK(reported.maps[m].placed == expected.maps[m].placed);
+    CHECK(reported.maps[m].T_reference_map.translation == expected.maps[m].T_reference_map.translation);
   }
 }
 

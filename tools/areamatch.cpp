@@ -13,6 +13,7 @@
 #include "eval/calibrate.hpp"
 #include "eval/eval_report.hpp"
 #include "cli_args.hpp"
+#include "progress_line.hpp"
 
 #include <areamatch/areamatch.hpp>
 #include <areamatch/detail/format.hpp>
@@ -692,6 +693,19 @@ const std::string kMatchHelp =
     format_double(areamatch::DecisionParams{}.different_places_p) + ") and 'not sure' otherwise: the answer\n"
     "may be right, and the output says what to try.\n";
 
+/// `match_map_files` (the paper's matcher with `options.paper`) with a progress line on a terminal.
+areamatch::MapPairRun match_files_with_progress(const std::string& command, const std::string& source_path,
+                                                const std::string& dest_path, const areamatch::MapPairOptions& options) {
+  areamatch_cli::ProgressLine line("areamatch " + command);
+  auto run = [&](auto matcher) {
+    matcher.progress = line.callback();
+    return areamatch::match_map_files(matcher, source_path, dest_path, options);
+  };
+  areamatch::MapPairRun result = options.paper ? run(areamatch::PaperMatcher{}) : run(areamatch::Matcher<>{});
+  line.finish();
+  return result;
+}
+
 int run_match(const std::vector<std::string>& tokens) {
   const Args args(tokens, merged(kPairFlags, {"json"}), merged(kPairOptions, {"png", "svg", "labels"}));
   if (args.flag("help")) {
@@ -704,7 +718,7 @@ int run_match(const std::vector<std::string>& tokens) {
 
   note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
   note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
-  const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
+  const auto run = match_files_with_progress("match", args.positional()[0], args.positional()[1], options);
   const auto& [source, dest, source_graph, dest_graph, result] = run;
 
   if (const auto png = args.text("png")) {
@@ -824,7 +838,7 @@ int run_warp(const std::vector<std::string>& tokens) {
 
   note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
   note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
-  const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
+  const auto run = match_files_with_progress("warp", args.positional()[0], args.positional()[1], options);
   const auto& [source, dest, source_graph, dest_graph, result] = run;
   std::vector<PointLine> lines;
   if (const auto points = args.text("points")) lines = read_point_lines(*points, source);
@@ -959,7 +973,7 @@ int run_assess(const std::vector<std::string>& tokens) {
 
   note_assumed_defaults(args.positional()[0], options.source_load, "--source-resolution");
   note_assumed_defaults(args.positional()[1], options.dest_load, "--dest-resolution");
-  const auto run = areamatch::match_map_files(args.positional()[0], args.positional()[1], options);
+  const auto run = match_files_with_progress("assess", args.positional()[0], args.positional()[1], options);
   areamatch::MapAssessment assessment =
       areamatch::assess_match(run.source, run.source_graph, run.dest, run.dest_graph, run.result, params);
   assessment.timings.match_s = run.result.timings.total_s;
@@ -1081,13 +1095,18 @@ int run_merge(const std::vector<std::string>& tokens) {
   using clock = std::chrono::steady_clock;
   const auto start = clock::now();
   // Each map loaded and prepared on its own, `--threads` at a time (errors: the first map's).
+  areamatch_cli::ProgressLine line("areamatch merge");
+  line.set("loading the maps");
   std::vector<areamatch::OccupancyGrid> grids(paths.size());
   areamatch::detail::for_each_index(paths.size(), merge_params.threads, [&](std::size_t i) { grids[i] = areamatch::load_map(paths[i]); });
   const auto loaded = clock::now();
+  line.set("segmenting");
   std::vector<areamatch::Matcher<>::PreparedMap> maps(paths.size());
   areamatch::detail::for_each_index(paths.size(), merge_params.threads, [&](std::size_t i) { maps[i] = matcher.prepare(grids[i]); });
   const auto prepared = clock::now();
+  matcher.progress = line.callback();
   const areamatch::MergeResult result = areamatch::merge_maps(matcher, maps, merge_params);
+  line.finish();
   const auto seconds = areamatch::detail::seconds_between;
 
   std::vector<const areamatch::OccupancyGrid*> grid_pointers;

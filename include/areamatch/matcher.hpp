@@ -56,6 +56,7 @@
 #include "match/scale.hpp"
 #include "match/scale_search.hpp"
 #include "match/selection.hpp"
+#include "progress.hpp"
 #include "segment/voronoi_segmenter.hpp"
 #include "segmenter.hpp"
 #include "transform.hpp"
@@ -117,6 +118,10 @@ class Matcher {
   Clusterer clusterer;
   Selection selection;
   MatcherParams params;
+  /// Called at the start of each stage of a match ("segment", "prepare", "select", "check";
+  /// "scale" per candidate scale of a scale search), on the calling thread; empty: no reports.
+  /// It never changes a result; one that throws stops the match (progress.hpp).
+  ProgressCallback progress;
 
   Matcher() = default;
   explicit Matcher(MatcherParams p) : params(std::move(p)) {}
@@ -202,6 +207,7 @@ class Matcher {
       return result;
     }
     std::optional<detail::GridOnlyData> from_grid;
+    detail::report(progress, "segment");
     const AreaGraph source_graph = segment_beside_grid_data(source, from_grid);
     const double segment_source_s = detail::seconds_since(start);
     MatchResult result = match_graphs(MapView{&source, &source_graph, nullptr}, view(dest), from_grid ? &*from_grid : nullptr);
@@ -224,6 +230,7 @@ class Matcher {
       return result;
     }
     // The two maps are segmented on two threads with `params.threads` ≥ 2 (same graphs either way).
+    detail::report(progress, "segment");
     AreaGraph graphs[2];
     double segment_s[2] = {0.0, 0.0};
     MatchResult result = match_side_by_side(source, graphs[0], dest, graphs[1], [&](std::size_t i) {
@@ -386,8 +393,14 @@ class Matcher {
     Matcher at_scale = *this;
     at_scale.params.estimate_scale = true;
     at_scale.params.validate();
+    at_scale.progress = nullptr;  // one report per candidate scale, not its stages
+    std::size_t tried = 0;
     return detail::estimate_scale(source, dest, at_scale.params, segmenter, features,
-                                  [&](const MapView& scaled) { return at_scale.match_graphs(scaled, dest); }, source_graph);
+                                  [&](const MapView& scaled) {
+                                    detail::report(progress, "scale", tried++);
+                                    return at_scale.match_graphs(scaled, dest);
+                                  },
+                                  source_graph);
   }
 
   /// The pipeline: what each map gives alone, area pairs, hypotheses, clusters, the selection's
@@ -415,6 +428,7 @@ class Matcher {
     auto no_answer = [&](std::string reason) { return finish({std::move(reason), Rejection::no_answer}); };
     if (source.areas.empty()) return no_answer("the source map has no areas: " + source.reason);
     if (dest.areas.empty()) return no_answer("the destination map has no areas: " + dest.reason);
+    detail::report(progress, "prepare");
 
     // What each map gives alone: prepared beforehand (or while the other map was segmented), or
     // built now — the destination's lookup with normals, for point-to-line ICP onto it. Both
@@ -484,6 +498,7 @@ class Matcher {
                     detail::format_double(params.hypotheses.min_area_overlap) + " under its own transform");
     }
 
+    detail::report(progress, "select");
     stage = std::chrono::steady_clock::now();
     const detail::MapEdges edges = detail::map_edges(source_data, dest_data);
     const Selected selected = selection.select(
@@ -492,6 +507,7 @@ class Matcher {
     result.timings.selection_s = detail::seconds_since(stage);
     if (selected.finalists.empty()) return no_answer("no cluster survived the selection");
 
+    detail::report(progress, "check");
     describe_answer(source, dest, source_data, dest_data, edges, selected, result);
     return finish(detail::refusal(result, params, selected.comparable_scores));
   }

@@ -42,6 +42,7 @@
 #include "match/params.hpp"
 #include "match/refine.hpp"
 #include "match/result.hpp"
+#include "progress.hpp"
 #include "merge/double_walls.hpp"
 #include "merge/fuse.hpp"
 #include "merge/pose_graph.hpp"
@@ -284,11 +285,18 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
     edge.dest = i_is_source ? j : i;
     return edge;
   };
+  // The merge reports its own stages (the matcher's `progress`); the matches, run side by side,
+  // report none of theirs.
+  MatcherType quiet = matcher;
+  quiet.progress = nullptr;
+  detail::SerialProgress progress(matcher.progress);
+  progress("match", 0, pairs.size());
   if (params.strategy == MergeStrategy::until_connected) {
     for (const auto& [i, j] : pairs) {
       if (root(i) == root(j)) continue;
       MergeEdge edge = make_edge(i, j);
-      edge.match = matcher.match(maps[edge.source], maps[edge.dest]);
+      edge.match = quiet.match(maps[edge.source], maps[edge.dest]);
+      progress.step("match", pairs.size());
       if (edge.match.ok) component[root(i)] = root(j);
       result.edges.push_back(std::move(edge));
     }
@@ -296,7 +304,8 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
     for (const auto& [i, j] : pairs) result.edges.push_back(make_edge(i, j));
     detail::for_each_index(result.edges.size(), params.threads, [&](std::size_t e) {
       MergeEdge& edge = result.edges[e];
-      edge.match = matcher.match(maps[edge.source], maps[edge.dest]);
+      edge.match = quiet.match(maps[edge.source], maps[edge.dest]);
+      progress.step("match", pairs.size());
     });
   }
   for (auto& edge : result.edges) {
@@ -334,6 +343,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   const auto refined = std::chrono::steady_clock::now();
 
   // 2. Poses over the accepted edges; drop the contradicted ones, the worst first.
+  progress("poses");
   std::vector<PoseConstraint> constraints;
   std::vector<std::size_t> edge_of;  // constraint → edge
   for (std::size_t e = 0; e < result.edges.size(); ++e) {
@@ -426,6 +436,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   // 4. Each placed map bent onto the reference's walls, each on its own (any thread count gives
   //    the same warps).
   if (params.non_rigid) {
+    progress("warp");
     detail::for_each_index(n, params.threads, [&](std::size_t m) {
       if (m == params.reference || !result.maps[m].placed) return;
       result.maps[m].warp = fit_warp(maps[m].grid(), reference_grid, result.maps[m].T_reference_map, params.warp);
@@ -434,6 +445,7 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   const auto warped = std::chrono::steady_clock::now();
 
   // 5. The merged grid of the placed maps.
+  progress("fuse");
   if (params.build_merged_map) {
     std::vector<const OccupancyGrid*> grids;
     std::vector<Similarity2> poses;

@@ -117,11 +117,14 @@ MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid
   const auto start = clock::now();
   MapPairRun run;
   double segment_s[2] = {0.0, 0.0};
+  SerialProgress progress(matcher.progress);  // the two maps are made on two threads
   auto make_map = [&](std::size_t i) {
     const bool source = i == 0;
     OccupancyGrid& grid = source ? run.source : run.dest;
+    progress("load");
     grid = get_grid(i);
     if (source && options.estimate_scale) return;
+    progress("segment");
     const auto segment_start = clock::now();
     (source ? run.source_graph : run.dest_graph) =
         segmenter_with_door(matcher.segmenter, source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
