@@ -136,13 +136,23 @@ struct PassageDistances {
                                     [&](const Eigen::Vector2d& q) { return (q - p).norm() < 1e-6; });
       if (!seen) positions.push_back(p);
     }
-    for (std::size_t i = 0; i < positions.size(); ++i) {
-      for (std::size_t j = i + 1; j < positions.size(); ++j) d.pairs.push_back({positions[i], positions[j]});
+    // Sorted by length (ties in the order of the passages) so the cost is a merge of two sorted
+    // lists, not all pairs of pairs. Each length computed once: a corridor with K doors has
+    // K(K−1)/2 pairs, and sorting the segments by a recomputed length was most of a large map's
+    // descriptor time.
+    const std::size_t k = positions.size();
+    std::vector<std::pair<double, std::size_t>> order;  // (length, i · k + j)
+    order.reserve(k > 1 ? k * (k - 1) / 2 : 0);
+    for (std::size_t i = 0; i < k; ++i) {
+      for (std::size_t j = i + 1; j < k; ++j) order.emplace_back((positions[j] - positions[i]).norm(), i * k + j);
     }
-    // Sorted by length so the cost is a merge of two sorted lists, not all pairs of pairs.
-    std::stable_sort(d.pairs.begin(), d.pairs.end(),
-                     [](const AreaSegment& x, const AreaSegment& y) { return x.length() < y.length(); });
-    for (const auto& s : d.pairs) d.lengths.push_back(s.length());
+    std::sort(order.begin(), order.end());
+    d.pairs.reserve(order.size());
+    d.lengths.reserve(order.size());
+    for (const auto& [length, ij] : order) {
+      d.pairs.push_back({positions[ij / k], positions[ij % k]});
+      d.lengths.push_back(length);
+    }
     d.hull_diameter = detail::hull_diameter(area.convex_hull);
     return d;
   }
