@@ -1,6 +1,6 @@
 # Type stubs of the compiled module (python/src/module.cpp), so editors complete the API.
 import os
-from typing import Any, Dict, List, Optional, Sequence, Tuple, Union, overload
+from typing import Any, Callable, Dict, List, Optional, Sequence, Tuple, Union, overload
 
 import numpy as np
 import numpy.typing as npt
@@ -115,7 +115,8 @@ def match(source: Map, dest: Map, *, allow_reflection: bool = ..., estimate_scal
           door_width: Optional[float] = ..., source_door_width: Optional[float] = ...,
           dest_door_width: Optional[float] = ..., k: Optional[int] = ..., min_score: Optional[float] = ...,
           min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
-          min_p_correct: Optional[float] = ..., paper: bool = ..., threads: int = ...) -> Result: ...
+          gate_min_overlap_m2: Optional[float] = ..., min_p_correct: Optional[float] = ..., paper: bool = ...,
+          threads: int = ..., progress: Optional[Callable[[str, int, int], None]] = ...) -> Result: ...
 
 class Assessment:
     ok: bool

@@ -213,6 +213,19 @@ struct AssessRun {
 
 
 /// A default matcher with options, for prepared maps and merging.
+/// A Python callable as the library's progress callback, called with (stage, done, total) and the
+/// GIL held; None: no reports. It stays alive for the call it was passed to, whose argument holds
+/// it: the callback keeps the bare pointer, since copies of it are made without the GIL.
+am::ProgressCallback python_progress(const py::object& callable) {
+  if (callable.is_none()) return nullptr;
+  PyObject* function = callable.ptr();
+  return [function](const am::Progress& p) {
+    const py::gil_scoped_acquire gil;
+    const py::handle callable_now(function);
+    callable_now(std::string(p.stage), p.done, p.total);
+  };
+}
+
 struct PyMatcher {
   DefaultMatcher matcher;
   am::MapPairOptions options;
@@ -513,18 +526,26 @@ PYBIND11_MODULE(_core, m) {
          std::optional<double> door_width, std::optional<double> source_door_width, std::optional<double> dest_door_width,
          std::optional<std::size_t> k, std::optional<double> min_score, std::optional<double> min_agreement,
          std::optional<double> gate_max_lower_walls, std::optional<double> gate_min_overlap_m2,
-         std::optional<double> min_p_correct, bool paper, unsigned threads) {
+         std::optional<double> min_p_correct, bool paper, unsigned threads, const py::object& progress) {
         const auto options = pair_options(door_width, source_door_width, dest_door_width, allow_reflection, estimate_scale, k,
                                            min_score, min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct,
                                            paper, threads);
-        return MatchRun{am::match_grids(source, dest, options), std::nullopt};
+        const am::ProgressCallback report = python_progress(progress);
+        auto run = [&](auto matcher) {
+          matcher.progress = report;
+          return am::match_grids(matcher, source, dest, options);
+        };
+        return MatchRun{paper ? run(am::PaperMatcher{}) : run(am::Matcher<>{}), std::nullopt};
       },
       py::arg("source"), py::arg("dest"), py::kw_only(), py::arg("allow_reflection") = false, py::arg("estimate_scale") = false,
       py::arg("door_width") = py::none(), py::arg("source_door_width") = py::none(), py::arg("dest_door_width") = py::none(),
       py::arg("k") = py::none(), py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
       py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
-      py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = am::default_program_threads, release_gil(),
-      "Segments both maps and matches source onto dest, as `areamatch match` (same options, same result).");
+      py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = am::default_program_threads,
+      py::arg("progress") = py::none(), release_gil(),
+      "Segments both maps and matches source onto dest, as `areamatch match` (same options, same result). "
+      "progress: called with (stage, done, total) at the start of each stage ('load', 'segment', 'prepare', "
+      "'select', 'check'; 'scale' per candidate scale); an exception it raises stops the match and is raised here.");
 
   // ------------------------------------------------------------------ Prepared maps, merging
   py::class_<Prepared>(m, "PreparedMap", "A map segmented and made ready for any number of matches (Matcher.prepare).")

@@ -60,6 +60,23 @@ def test_match_finds_the_truth(robot, building):
     assert np.asarray(result.picture()).ndim == 3
 
 
+def test_match_reports_progress_and_a_raise_stops_it(robot, building):
+    seen = []
+    result = areamatch.match(robot.map, building.layout, progress=lambda stage, done, total: seen.append(stage))
+    assert result.ok and result.T_dest_source.tolist() == areamatch.match(robot.map, building.layout).T_dest_source.tolist()
+    assert seen.count("load") == 2 and seen.count("segment") == 2 and seen[-3:] == ["prepare", "select", "check"]
+
+    class Stop(Exception):
+        pass
+
+    def stop(stage, done, total):
+        if stage == "select":
+            raise Stop("enough")
+
+    with pytest.raises(Stop, match="enough"):
+        areamatch.match(robot.map, building.layout, progress=stop)
+
+
 def test_match_rejects_another_building(robot):
     other = areamatch.synthetic.generate_building(1234, width_m=24.0, height_m=26.0).layout
     result = areamatch.match(robot.map, other)
