@@ -1527,7 +1527,9 @@ const char* kMainHelp =
     "  simulate PLAN OUTDIR  simulated laser-SLAM maps of a floor plan, with ground truth\n"
     "  calibrate CSV...  fit the accept/reject decision on eval results, cross-validated by building\n"
     "  version           print the version\n"
-    "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n";
+    "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n"
+    "A run of match, warp, assess or merge over a second shows its stage on stderr when stderr is a\n"
+    "terminal (AREAMATCH_PROGRESS=always draws it anyway, =never never).\n";
 
 }  // namespace
 
