@@ -697,11 +697,10 @@ const std::string kMatchHelp =
 areamatch::MapPairRun match_files_with_progress(const std::string& command, const std::string& source_path,
                                                 const std::string& dest_path, const areamatch::MapPairOptions& options) {
   areamatch_cli::ProgressLine line("areamatch " + command);
-  auto run = [&](auto matcher) {
+  areamatch::MapPairRun result = areamatch::detail::with_default_matcher(options, [&](auto matcher) {
     matcher.progress = line.callback();
     return areamatch::match_map_files(matcher, source_path, dest_path, options);
-  };
-  areamatch::MapPairRun result = options.paper ? run(areamatch::PaperMatcher{}) : run(areamatch::Matcher<>{});
+  });
   line.finish();
   return result;
 }

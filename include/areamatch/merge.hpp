@@ -293,12 +293,13 @@ MergeResult merge_maps(const MatcherType& matcher, const std::vector<typename Ma
   progress("match", 0, pairs.size());
   if (params.strategy == MergeStrategy::until_connected) {
     for (const auto& [i, j] : pairs) {
-      if (root(i) == root(j)) continue;
-      MergeEdge edge = make_edge(i, j);
-      edge.match = quiet.match(maps[edge.source], maps[edge.dest]);
+      if (root(i) != root(j)) {  // else already joined: the pair is done without a match
+        MergeEdge edge = make_edge(i, j);
+        edge.match = quiet.match(maps[edge.source], maps[edge.dest]);
+        if (edge.match.ok) component[root(i)] = root(j);
+        result.edges.push_back(std::move(edge));
+      }
       progress.step("match", pairs.size());
-      if (edge.match.ok) component[root(i)] = root(j);
-      result.edges.push_back(std::move(edge));
     }
   } else {
     for (const auto& [i, j] : pairs) result.edges.push_back(make_edge(i, j));

@@ -46,13 +46,13 @@ class SerialProgress {
   void operator()(std::string_view stage, std::size_t done = 0, std::size_t total = 0) {
     if (!callback_) return;
     const std::lock_guard<std::mutex> lock(mutex_);
-    callback_(Progress{stage, done, total});
+    report(callback_, stage, done, total);
   }
   /// One more step of `stage` done, of `total`.
   void step(std::string_view stage, std::size_t total) {
     if (!callback_) return;
     const std::lock_guard<std::mutex> lock(mutex_);
-    callback_(Progress{stage, ++done_, total});
+    report(callback_, stage, ++done_, total);
   }
 
  private:

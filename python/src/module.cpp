@@ -212,7 +212,6 @@ struct AssessRun {
 };
 
 
-/// A default matcher with options, for prepared maps and merging.
 /// A Python callable as the library's progress callback, called with (stage, done, total) and the
 /// GIL held; None: no reports. It stays alive for the call it was passed to, whose argument holds
 /// it: the callback keeps the bare pointer, since copies of it are made without the GIL.
@@ -226,6 +225,7 @@ am::ProgressCallback python_progress(const py::object& callable) {
   };
 }
 
+/// A default matcher with options, for prepared maps and merging.
 struct PyMatcher {
   DefaultMatcher matcher;
   am::MapPairOptions options;
@@ -531,11 +531,12 @@ PYBIND11_MODULE(_core, m) {
                                            min_score, min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct,
                                            paper, threads);
         const am::ProgressCallback report = python_progress(progress);
-        auto run = [&](auto matcher) {
-          matcher.progress = report;
-          return am::match_grids(matcher, source, dest, options);
-        };
-        return MatchRun{paper ? run(am::PaperMatcher{}) : run(am::Matcher<>{}), std::nullopt};
+        return MatchRun{am::detail::with_default_matcher(options,
+                                                         [&](auto matcher) {
+                                                           matcher.progress = report;
+                                                           return am::match_grids(matcher, source, dest, options);
+                                                         }),
+                        std::nullopt};
       },
       py::arg("source"), py::arg("dest"), py::kw_only(), py::arg("allow_reflection") = false, py::arg("estimate_scale") = false,
       py::arg("door_width") = py::none(), py::arg("source_door_width") = py::none(), py::arg("dest_door_width") = py::none(),

@@ -181,16 +181,27 @@ MapPairRun match_grids(const M& matcher, const OccupancyGrid& source, const Occu
   return detail::run_map_pair(matcher, options, [&](std::size_t i) { return i == 0 ? source : dest; });
 }
 
+namespace detail {
+
+/// `run(matcher)` with the matcher of the overloads that take none: `PaperMatcher` when
+/// `options.paper`, else the default `Matcher<>` (a caller may set it up first, e.g. its
+/// `progress`).
+template <class Run>
+MapPairRun with_default_matcher(const MapPairOptions& options, Run&& run) {
+  return options.paper ? run(PaperMatcher{}) : run(Matcher<>{});
+}
+
+}  // namespace detail
+
 /// `match_map_files` with the default `Matcher<>`, or `PaperMatcher` when `options.paper`.
 inline MapPairRun match_map_files(const std::string& source_path, const std::string& dest_path,
                                   const MapPairOptions& options = {}) {
-  return options.paper ? match_map_files(PaperMatcher{}, source_path, dest_path, options)
-                       : match_map_files(Matcher<>{}, source_path, dest_path, options);
+  return detail::with_default_matcher(options, [&](const auto& matcher) { return match_map_files(matcher, source_path, dest_path, options); });
 }
 
 /// `match_grids` with the default `Matcher<>`, or `PaperMatcher` when `options.paper`.
 inline MapPairRun match_grids(const OccupancyGrid& source, const OccupancyGrid& dest, const MapPairOptions& options = {}) {
-  return options.paper ? match_grids(PaperMatcher{}, source, dest, options) : match_grids(Matcher<>{}, source, dest, options);
+  return detail::with_default_matcher(options, [&](const auto& matcher) { return match_grids(matcher, source, dest, options); });
 }
 
 }  // namespace areamatch
