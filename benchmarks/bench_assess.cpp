@@ -9,6 +9,7 @@
 // warp), times_match = (match_ms + extra_ms) / match_ms — the figure the targets are about.
 //   build/benchmarks/areamatch_bench --benchmark_filter='^(warp|assess)/' --benchmark_out=assess.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io.hpp>
 #include <eval/evaluate.hpp>
 

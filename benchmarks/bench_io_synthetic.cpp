@@ -1,6 +1,7 @@
 // Speed of the foundation: generating synthetic buildings and robot maps of growing size, and
 // loading real maps. Run: build/benchmarks/areamatch_bench --benchmark_filter=^BM_ --benchmark_out=io.json
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io.hpp>
 
 #include <benchmark/benchmark.h>

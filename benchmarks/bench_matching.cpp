@@ -13,6 +13,7 @@
 // Pairs are prepared on first use, so a --benchmark_filter run pays only for what it selects.
 //   build/benchmarks/areamatch_bench --benchmark_filter='^(match|pair|onto_prepared)/' --benchmark_out=matching.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io.hpp>
 #include <eval/evaluate.hpp>
 

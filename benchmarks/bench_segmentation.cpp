@@ -6,6 +6,7 @@
 // Inputs are built on first use (a filtered run loads only what it selects).
 //   build/benchmarks/areamatch_bench --benchmark_filter='^(segment|voronoi|voronoi_boost)/' --benchmark_out=segmentation.json --benchmark_out_format=json
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/detail/voronoi_circles.hpp>
 #include <areamatch/io.hpp>
 

@@ -4,6 +4,7 @@
 // mirror apart.
 //   build/examples/custom_clusterer
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -3,6 +3,7 @@
 // type, `describe` and `cost` (see <areamatch/match/features.hpp>).
 //   build/examples/custom_feature
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 
 #include <array>
 #include <cmath>

@@ -3,6 +3,7 @@
 // member function `AreaGraph segment(const OccupancyGrid&) const` (see <areamatch/segmenter.hpp>).
 //   build/examples/custom_segmenter
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 
 #include <algorithm>
 #include <cmath>

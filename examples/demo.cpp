@@ -4,6 +4,7 @@
 //
 //   demo [OUTDIR]      (default: areamatch-demo)
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/evaluation.hpp>
 #include <areamatch/io.hpp>
 

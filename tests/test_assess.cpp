@@ -1,6 +1,7 @@
 // Map assessment (assess.hpp): generated robot maps whose exact truth is known — bends, broken
 // pieces, explored share — assessed against their layouts; refusals and bad parameters.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io/json.hpp>
 #include <doctest/doctest.h>
 #include "test_support.hpp"

@@ -3,6 +3,7 @@
 // (leave-one-building-out, docs/evaluation.md), so a rule that only works on the buildings it
 // was fitted on fails here.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/evaluation.hpp>
 
 #include <doctest/doctest.h>

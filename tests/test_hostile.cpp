@@ -2,6 +2,7 @@
 // the test named in the table. The rule: a clear `areamatch::error` or a not-ok result with a
 // reason, never a crash, a hang, an unbounded allocation or a silent wrong answer.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io.hpp>
 
 #include <doctest/doctest.h>

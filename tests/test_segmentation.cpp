@@ -1,6 +1,7 @@
 // The Voronoi segmenter: Boost.Polygon's input contract on nasty shapes, rooms and doors of
 // synthetic buildings, valid non-overlapping polygons, determinism, and bad input.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/detail/random.hpp>
 #include <areamatch/detail/voronoi_circles.hpp>
 #include <areamatch/segmentation_score.hpp>

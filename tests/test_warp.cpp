@@ -1,6 +1,7 @@
 // The non-rigid warp (warp.hpp): generated bent robot maps, whose exact correspondence is known
 // (`RobotMap::true_dest`), laid onto their layouts beyond the rigid answer.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/warp.hpp>
 #include <doctest/doctest.h>
 #include "test_support.hpp"

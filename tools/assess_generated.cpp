@@ -9,6 +9,7 @@
 //   coverage     the share of the layout's rooms and corridors explored, against the truth
 // One tab-separated line per pair, then a summary.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 
 #include <algorithm>
 #include <cmath>

@@ -10,6 +10,8 @@
 ///   hypotheses.hpp    a transform per pair and segment match, filtered by the pair's overlap
 ///   clusterer.hpp     angular (paper) or pose (default) clustering
 ///   selection.hpp     the answer among the clusters: whole-map verification (default) or the paper's
+///   edges.hpp         the edges of free space and of the areas, as cells and thinned points
+///   boundary_lookup.hpp  nearest boundary point per cell (and per facing direction), normals
 ///   refine.hpp        trimmed ICP on the free-space boundaries
 ///   evidence.hpp      how much the maps agree under the answer
 ///   margins.hpp       how far the answer stands out from its rivals and its own turns
@@ -18,6 +20,7 @@
 ///   scale_search.hpp  the source's scale unknown (`estimate_scale`)
 ///   result.hpp        MatchResult
 ///   params.hpp        MatcherParams, every tunable, and the paper's preset
+///   schedule.hpp      which work runs on which thread, and its timing
 ///
 /// Two configurations ship. `Matcher<>` with `MatcherParams{}` is our default, chosen by
 /// measurement on real maps (docs/algorithm.md): k = 10, four turns per segment match, both
@@ -41,6 +44,7 @@
 #include "grid.hpp"
 #include "image.hpp"
 #include "match/acceptance.hpp"
+#include "match/answer.hpp"
 #include "match/clusterer.hpp"
 #include "match/correspondence.hpp"
 #include "match/costs.hpp"
@@ -48,6 +52,7 @@
 #include "match/evidence.hpp"
 #include "match/features.hpp"
 #include "match/hypotheses.hpp"
+#include "match/inputs.hpp"
 #include "match/map_data.hpp"
 #include "match/margins.hpp"
 #include "match/params.hpp"
@@ -55,6 +60,7 @@
 #include "match/result.hpp"
 #include "match/scale.hpp"
 #include "match/scale_search.hpp"
+#include "match/schedule.hpp"
 #include "match/selection.hpp"
 #include "progress.hpp"
 #include "segment/voronoi_segmenter.hpp"
@@ -62,7 +68,6 @@
 #include "transform.hpp"
 
 #include <algorithm>
-#include <atomic>
 #include <chrono>
 #include <cstddef>
 #include <optional>
@@ -176,7 +181,7 @@ class Matcher {
   PreparedMap prepare(const OccupancyGrid& grid) const {
     params.validate();
     std::optional<detail::GridOnlyData> from_grid;
-    AreaGraph graph = segment_beside_grid_data(grid, from_grid);
+    AreaGraph graph = detail::segment_beside_grid_data(grid, params, segment_fn(), from_grid);
     return prepare_with(grid, std::move(graph), from_grid ? &*from_grid : nullptr);
   }
 
@@ -208,7 +213,7 @@ class Matcher {
     }
     std::optional<detail::GridOnlyData> from_grid;
     detail::report(progress, "segment");
-    const AreaGraph source_graph = segment_beside_grid_data(source, from_grid);
+    const AreaGraph source_graph = detail::segment_beside_grid_data(source, params, segment_fn(), from_grid);
     const double segment_source_s = detail::seconds_since(start);
     MatchResult result = match_graphs(MapView{&source, &source_graph, nullptr}, view(dest), from_grid ? &*from_grid : nullptr);
     result.timings.segment_source_s = segment_source_s;
@@ -262,28 +267,16 @@ class Matcher {
         return false;
       }
     }();
-    std::optional<MapData> early;  // the data of the map made first
-    std::size_t early_side = 2;    // which map that is; 2: none
-    double early_s = 0.0;
-    std::atomic<bool> one_made{false};
-    std::chrono::steady_clock::time_point made_at[2];
-    detail::for_each_index(2, params.threads, [&](std::size_t i) {
-      make_map(i);
-      made_at[i] = std::chrono::steady_clock::now();
-      if (!build_early || one_made.exchange(true)) return;  // the second map: the match builds its data
+    const auto early = detail::make_two_maps<MapData>(params, build_early, make_map, [&](std::size_t i) -> std::optional<MapData> {
       const OccupancyGrid& grid = i == 0 ? source : dest;
       const AreaGraph& graph = i == 0 ? source_graph : dest_graph;
-      if (!graph_fits(grid, graph) || graph.areas.empty() || graph.areas.size() > params.max_areas) return;
-      early = detail::build_map_data(grid, graph, features, params, i == 1);  // normals: the destination's, for ICP
-      early_side = i;
-      early_s = detail::seconds_since(made_at[i]);
+      if (!detail::graph_fits(grid, graph) || graph.areas.empty() || graph.areas.size() > params.max_areas) return std::nullopt;
+      return detail::build_map_data(grid, graph, features, params, i == 1);  // normals: the destination's, for ICP
     });
-    const auto both_made = std::max(made_at[0], made_at[1]);
-    check_segmented(source, source_graph, dest, dest_graph);
-    MatchResult result = match_graphs(MapView{&source, &source_graph, early_side == 0 ? &*early : nullptr},
-                                      MapView{&dest, &dest_graph, early_side == 1 ? &*early : nullptr});
-    result.timings.prepare_s += early_s;
-    result.timings.match_s = detail::seconds_since(both_made);
+    detail::check_segmented(params, source, source_graph, dest, dest_graph);
+    MatchResult result = match_graphs(MapView{&source, &source_graph, early.of(0)}, MapView{&dest, &dest_graph, early.of(1)});
+    result.timings.prepare_s += early.seconds;
+    result.timings.match_s = detail::seconds_since(early.both_made);
     return result;
   }
 
@@ -291,7 +284,7 @@ class Matcher {
   /// must come from its grid. Not with `params.estimate_scale` (see `match_estimating_scale`).
   MatchResult match(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
                     const AreaGraph& dest_graph) const {
-    check_segmented(source, source_graph, dest, dest_graph);
+    detail::check_segmented(params, source, source_graph, dest, dest_graph);
     return match_graphs(MapView{&source, &source_graph, nullptr}, MapView{&dest, &dest_graph, nullptr});
   }
 
@@ -303,7 +296,7 @@ class Matcher {
   MatchResult match_estimating_scale(const OccupancyGrid& source, const OccupancyGrid& dest, const AreaGraph& dest_graph,
                                      AreaGraph* source_graph = nullptr) const {
     params.validate();
-    check_graph(dest, dest_graph, "destination");
+    detail::check_graph(dest, dest_graph, "destination");
     const auto start = std::chrono::steady_clock::now();
     // The destination's data once for every candidate scale.
     std::optional<MapData> dest_data;
@@ -322,7 +315,7 @@ class Matcher {
 
   PreparedMap prepare_with(const OccupancyGrid& grid, AreaGraph graph, const detail::GridOnlyData* from_grid) const {
     params.validate();
-    check_graph(grid, graph, "prepared");
+    detail::check_graph(grid, graph, "prepared");
     PreparedMap m;
     m.grid_ = grid;
     m.graph_ = std::move(graph);
@@ -331,19 +324,9 @@ class Matcher {
     return m;
   }
 
-  /// Segments `grid`; with `params.threads` ≥ 2, builds what of its match data needs only the
-  /// cells (`detail::grid_only_data`) into `from_grid` on a second thread meanwhile. Errors: the
-  /// segmentation's first, as on one thread. The callers have validated `params`.
-  AreaGraph segment_beside_grid_data(const OccupancyGrid& grid, std::optional<detail::GridOnlyData>& from_grid) const {
-    // A grid the segmenter refuses outright is not scanned beside it.
-    const long long cells = static_cast<long long>(grid.width()) * grid.height();
-    if (detail::resolved_threads(params.threads) < 2 || grid.empty() || cells > max_grid_cells) return segmenter.segment(grid);
-    AreaGraph graph;
-    detail::for_each_index(2, params.threads, [&](std::size_t i) {
-      if (i == 0) graph = segmenter.segment(grid);
-      else from_grid = detail::grid_only_data(grid, params);
-    });
-    return graph;
+  /// The segmenter as a function of the grid, for the schedules.
+  auto segment_fn() const {
+    return [this](const OccupancyGrid& grid) { return segmenter.segment(grid); };
   }
 
   void check_prepared(const PreparedMap& m, const char* which) const {
@@ -351,39 +334,6 @@ class Matcher {
     if (!(m.key_ == detail::map_data_key(params, true))) {
       throw parameter_error(std::string("Matcher::match: the ") + which + " map was prepared by a matcher with other "
                             "cell sizes, edge spacing, lookups or wall directions; prepare it with this matcher");
-    }
-  }
-
-  static bool graph_fits(const OccupancyGrid& grid, const AreaGraph& graph) {
-    return graph.grid.width == grid.width() && graph.grid.height == grid.height() && graph.labels.size() == grid.cells().size();
-  }
-
-  /// What matching two maps segmented by the caller needs: no scale to estimate (that segments
-  /// the source itself), and each graph made from its grid.
-  void check_segmented(const OccupancyGrid& source, const AreaGraph& source_graph, const OccupancyGrid& dest,
-                       const AreaGraph& dest_graph) const {
-    if (params.estimate_scale) {
-      throw parameter_error("Matcher::match: estimate_scale re-segments the source at each candidate scale; pass the "
-                            "source grid (match(source, dest) or match_estimating_scale), not its graph");
-    }
-    check_graph(source, source_graph, "source");
-    check_graph(dest, dest_graph, "destination");
-  }
-
-  static void check_graph(const OccupancyGrid& grid, const AreaGraph& graph, const char* which) {
-    if (!graph_fits(grid, graph)) {
-      throw parameter_error(std::string("Matcher::match: the ") + which + " Area Graph was not made from the " + which +
-                            " grid (sizes differ)");
-    }
-  }
-
-  void check_area_limit(const AreaGraph& source, const AreaGraph& dest) const {
-    for (const auto& [graph, which] : {std::pair{&source, "source"}, std::pair{&dest, "destination"}}) {
-      if (graph->areas.size() > params.max_areas) {
-        throw limit_error(std::string("the ") + which + " map has " + std::to_string(graph->areas.size()) +
-                          " areas, more than MatcherParams::max_areas (" + std::to_string(params.max_areas) +
-                          "); raise it (matching time grows with areas_source x areas_dest) or match parts of the map");
-      }
     }
   }
 
@@ -411,7 +361,7 @@ class Matcher {
     const AreaGraph& source = *source_map.graph;
     const AreaGraph& dest = *dest_map.graph;
     params.validate();
-    check_area_limit(source, dest);
+    detail::check_area_limit(params, source, dest);
     const auto start = std::chrono::steady_clock::now();
     MatchResult result;
     result.statistics.source_areas = source.areas.size();
@@ -431,67 +381,32 @@ class Matcher {
     detail::report(progress, "prepare");
 
     // What each map gives alone: prepared beforehand (or while the other map was segmented), or
-    // built now — the destination's lookup with normals, for point-to-line ICP onto it. Both
-    // built here: one thread each. Only the source, with threads to spare: its areas' part, then
-    // the pairs, hypotheses and clusters (which read only that) on one thread, beside its cells'
-    // part (the edge lookup: the longest piece) on another. Only the destination: its two parts
-    // side by side. The same result either way.
-    auto stage = std::chrono::steady_clock::now();
+    // built now (match/schedule.hpp) — the destination's lookup with normals, for point-to-line
+    // ICP onto it — then the costs and mutual pairs (the same on both sides of the mirror),
+    // hypotheses and, when there are any, their clusters.
     std::optional<MapData> source_own, dest_own;
     std::vector<AreaPair> pairs;
     std::vector<Hypothesis> hypotheses;
     std::vector<Cluster> clusters;
-    // Costs and mutual pairs (they do not change under reflection: computed once), hypotheses
-    // and, when there are any, their clusters.
     auto find_clusters = [&](const MapData& source_data, const MapData& dest_data, unsigned threads) {
-      auto step = std::chrono::steady_clock::now();
-      const Eigen::MatrixXd cost = weighted_cost(features.costs(source_data.descriptors, dest_data.descriptors), weights.values);
-      pairs = mutual_nearest_pairs(cost, params.k);
-      result.statistics.mutual_pairs = pairs.size();
-      result.timings.features_s = detail::seconds_since(step);
-      step = std::chrono::steady_clock::now();
-      hypotheses = make_hypotheses(hypothesis_inputs(source, dest, source_data, dest_data), pairs, source_data, dest_data,
-                                   threads, result.statistics);
-      result.timings.hypotheses_s = detail::seconds_since(step);
-      if (hypotheses.empty()) return;
-      step = std::chrono::steady_clock::now();
-      clusters = clusterer.cluster(hypotheses);
-      result.statistics.clusters = clusters.size();
-      result.timings.clustering_s = detail::seconds_since(step);
-    };
-    if (!source_map.data && dest_map.data && detail::resolved_threads(params.threads) >= 2) {
-      source_own.emplace();
-      double part_s[2] = {0.0, 0.0};
-      detail::for_each_index(2, params.threads, [&](std::size_t part) {
-        const auto part_start = std::chrono::steady_clock::now();
-        if (part == 1) {
-          detail::build_edge_data(*source_own, *source_map.grid, source, params, false, source_grid_data);
-          part_s[1] = detail::seconds_since(part_start);
-          return;
-        }
-        detail::build_area_data(*source_own, source, features, params);
-        part_s[0] = detail::seconds_since(part_start);
-        find_clusters(*source_own, *dest_map.data, 1);
+      detail::timed(result.timings.features_s, [&] {
+        pairs = mutual_nearest_pairs(weighted_cost(features.costs(source_data.descriptors, dest_data.descriptors), weights.values),
+                                     params.k);
       });
-      result.timings.prepare_s = part_s[0] + part_s[1];
-    } else {
-      if (!source_map.data && !dest_map.data) {
-        detail::for_each_index(2, params.threads, [&](std::size_t i) {
-          if (i == 0) source_own = detail::build_map_data(*source_map.grid, source, features, params, false, 1, source_grid_data);
-          else dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true);
-        });
-      } else if (!source_map.data) {
-        source_own = detail::build_map_data(*source_map.grid, source, features, params, false, params.threads, source_grid_data);
-      } else if (!dest_map.data) {
-        dest_own = detail::build_map_data(*dest_map.grid, dest, features, params, true, params.threads);
-      }
-      if (source_own || dest_own) result.timings.prepare_s = detail::seconds_since(stage);
-      find_clusters(source_map.data ? *source_map.data : *source_own, dest_map.data ? *dest_map.data : *dest_own,
-                    params.threads);
-    }
+      result.statistics.mutual_pairs = pairs.size();
+      hypotheses = detail::timed(result.timings.hypotheses_s, [&] {
+        return detail::pair_hypotheses(features, params, detail::hypothesis_inputs(source, dest, source_data, dest_data), pairs,
+                                       source_data, dest_data, threads, result.statistics);
+      });
+      if (hypotheses.empty()) return;
+      clusters = detail::timed(result.timings.clustering_s, [&] { return clusterer.cluster(hypotheses); });
+      result.statistics.clusters = clusters.size();
+    };
+    result.timings.prepare_s = detail::build_missing_data(source_map, dest_map, features, params, source_grid_data, source_own,
+                                                          dest_own, find_clusters);
     const MapData& source_data = source_map.data ? *source_map.data : *source_own;
     const MapData& dest_data = dest_map.data ? *dest_map.data : *dest_own;
-    const HypothesisInputs maps = hypothesis_inputs(source, dest, source_data, dest_data);
+    const HypothesisInputs maps = detail::hypothesis_inputs(source, dest, source_data, dest_data);
     if (hypotheses.empty()) {
       return no_answer("no transform hypothesis: " + std::to_string(pairs.size()) +
                     " mutual area pairs, none overlapping by at least " +
@@ -499,70 +414,16 @@ class Matcher {
     }
 
     detail::report(progress, "select");
-    stage = std::chrono::steady_clock::now();
     const detail::MapEdges edges = detail::map_edges(source_data, dest_data);
-    const Selected selected = selection.select(
-        SelectionInputs{params, maps, pairs, hypotheses, clusters, source_data.fine(), dest_data.fine(), edges},
-        result.statistics);
-    result.timings.selection_s = detail::seconds_since(stage);
+    const Selected selected = detail::timed(result.timings.selection_s, [&] {
+      return selection.select(SelectionInputs{params, maps, pairs, hypotheses, clusters, source_data.fine(), dest_data.fine(), edges},
+                              result.statistics);
+    });
     if (selected.finalists.empty()) return no_answer("no cluster survived the selection");
 
     detail::report(progress, "check");
-    describe_answer(source, dest, source_data, dest_data, edges, selected, result);
+    detail::describe_answer(params, source, dest, source_data, dest_data, edges, selected, result);
     return finish(detail::refusal(result, params, selected.comparable_scores));
-  }
-
-  /// What the hypotheses read of the two maps.
-  static HypothesisInputs hypothesis_inputs(const AreaGraph& source, const AreaGraph& dest, const MapData& source_data,
-                                            const MapData& dest_data) {
-    return HypothesisInputs{&source, &dest, &source_data.coarse, &dest_data.coarse, source_data.wall_direction,
-                            dest_data.wall_direction};
-  }
-
-  /// The hypotheses of every mutual pair on each side of the mirror. One job per (side, pair),
-  /// each into its own list, joined in job order: the same list for any thread count.
-  std::vector<Hypothesis> make_hypotheses(const HypothesisInputs& maps, const std::vector<AreaPair>& pairs,
-                                          const MapData& source_data, const MapData& dest_data, unsigned threads,
-                                          MatchStatistics& statistics) const {
-    const std::vector<bool> sides = detail::mirror_sides(params);
-    std::vector<std::vector<Hypothesis>> per_job(sides.size() * pairs.size());
-    std::vector<std::size_t> overlay_failures(per_job.size(), 0);
-    detail::for_each_index(per_job.size(), threads, [&](std::size_t job) {
-      const AreaPair& pair = pairs[job % pairs.size()];
-      const auto segments = features.segments(source_data.descriptors, dest_data.descriptors,
-                                              static_cast<std::size_t>(pair.source), static_cast<std::size_t>(pair.dest));
-      add_pair_hypotheses(maps, pair, segments, sides[job / pairs.size()], params.hypotheses, per_job[job],
-                          &overlay_failures[job]);
-    });
-    std::vector<Hypothesis> hypotheses;
-    for (auto& list : per_job) hypotheses.insert(hypotheses.end(), list.begin(), list.end());
-    for (std::size_t failures : overlay_failures) statistics.overlay_failures += failures;
-    statistics.hypotheses = hypotheses.size();
-    return hypotheses;
-  }
-
-  /// The selection's answer in `result`: its transform and score, its margins over the rivals,
-  /// the room correspondences, the evidence, the turn margin and p_correct.
-  void describe_answer(const AreaGraph& source, const AreaGraph& dest, const MapData& source_data,
-                       const MapData& dest_data, const detail::MapEdges& edges, const Selected& selected,
-                       MatchResult& result) const {
-    const ScoredTransform& best = selected.finalists.front();
-    const AreaRaster& source_fine = source_data.fine();
-    const AreaRaster& dest_fine = dest_data.fine();
-    result.T_dest_source = best.T;
-    result.pixel_transform = to_pixel_transform(best.T, source.grid, dest.grid);
-    result.score = best.score;
-    detail::measure_margins(source_fine, dest_fine, selected, params, result);
-    result.matched_areas = detail::area_correspondences(
-        detail::area_wall_points(source, source_data.free_edge, params.correspondences.local.point_spacing_m), source, dest,
-        source_fine, dest_fine, edges.dest_lookup, best.T, params.correspondences, params.threads);
-    result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
-                                       params.passage_distance_m, params.agreement_iou_weight);
-    if (selected.refined) {
-      detail::measure_turn_margin(source_fine, dest_fine, edges, dest_data.wall_direction, params, result);
-    }
-    result.ambiguous = result.confidence < params.ambiguity_margin;
-    result.p_correct = p_correct(decision_features(result), params.decision);
   }
 };
 

@@ -5,6 +5,7 @@
 // or OSError (a file that cannot be read or written), with the library's message.
 
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io.hpp>
 #include <areamatch/io/match_files.hpp>
 #include <areamatch/merge.hpp>

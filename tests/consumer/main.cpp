@@ -3,6 +3,7 @@
 // every policy is the user's own — segmenter, feature set with a feature of its own, weights,
 // clusterer and selection — through the installed io/match_files.hpp.
 #include <areamatch/areamatch.hpp>
+#include <areamatch/synthetic.hpp>
 #include <areamatch/io.hpp>
 #include <areamatch/io/match_files.hpp>
 

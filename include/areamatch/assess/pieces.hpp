@@ -24,6 +24,7 @@
 #include "../match/refine.hpp"
 #include "../transform.hpp"
 #include "params.hpp"
+#include "tiles.hpp"
 
 #include <Eigen/Core>
 
@@ -100,33 +101,6 @@ struct Brokenness {
 
 namespace detail {
 
-/// Union-find over areas (smaller root wins, so the result does not depend on the join order).
-class AreaSets {
- public:
-  explicit AreaSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int a) {
-    while (parent_[static_cast<std::size_t>(a)] != a) {
-      parent_[static_cast<std::size_t>(a)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(a)])];
-      a = parent_[static_cast<std::size_t>(a)];
-    }
-    return a;
-  }
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
-
-/// Whether two fits agree at `at` (map world): turn and placed position.
-inline bool fits_agree(const Similarity2& a, const Similarity2& b, const Eigen::Vector2d& at, const AssessParams& params) {
-  return std::abs(wrap_angle(a.rotation - b.rotation)) <= params.piece_rotation_tolerance_rad &&
-         (a * at - b * at).norm() <= params.piece_shift_tolerance_m;
-}
-
 /// The finer labelling of `Brokenness::piece_cells`: each cell whose tile or a neighbouring tile
 /// lies in another piece goes to the piece (of those) under whose transform most of the wall points
 /// within a tile's half side lie on a reference wall; the others keep their tile's piece.
@@ -170,6 +144,40 @@ inline std::vector<int> piece_cells(const Brokenness& b, const std::vector<std::
   return out;
 }
 
+
+/// Per piece (indexed by its root tile), the areas whose wall points lie mostly in its tiles.
+inline std::vector<std::vector<int>> areas_by_piece(const WallTiles& tiles, const std::vector<int>& piece_of_tile, std::size_t n_areas) {
+  const std::size_t n = tiles.size();
+  std::vector<std::vector<std::size_t>> votes(n_areas);
+  for (std::size_t t = 0; t < n; ++t) {
+    for (const int a : tiles.wall_area[t]) {
+      auto& v = votes[static_cast<std::size_t>(a)];
+      if (v.empty()) v.assign(n, 0);
+      ++v[static_cast<std::size_t>(piece_of_tile[t])];
+    }
+  }
+  std::vector<std::vector<int>> grouped(n);
+  for (std::size_t a = 0; a < n_areas; ++a) {
+    if (votes[a].empty()) continue;
+    const auto piece = static_cast<std::size_t>(std::max_element(votes[a].begin(), votes[a].end()) - votes[a].begin());
+    grouped[piece].push_back(static_cast<int>(a));
+  }
+  return grouped;
+}
+
+/// The pieces (sorted, the main one first) into `out`: each one's turn and shift relative to the
+/// main piece, and each area's piece index.
+inline void number_pieces(std::vector<std::pair<RigidPiece, std::size_t>>& found, Brokenness& out) {
+  const Similarity2 main = found.front().first.T_reference_map;
+  for (std::size_t k = 0; k < found.size(); ++k) {
+    RigidPiece& piece = found[k].first;
+    piece.rotation_rad = k == 0 ? 0.0 : wrap_angle(piece.T_reference_map.rotation - main.rotation);
+    piece.shift_m = k == 0 ? 0.0 : (piece.T_reference_map * piece.centroid - main * piece.centroid).norm();
+    for (const int a : piece.areas) out.piece_of_area[static_cast<std::size_t>(a)] = static_cast<int>(k);
+    out.pieces.push_back(std::move(piece));  // found[k].second stays for the caller
+  }
+}
+
 }  // namespace detail
 
 /// The rigid pieces of `map` (segmented into `graph`) against the reference walls `reference`
@@ -181,173 +189,37 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
   out.piece_of_area.assign(n_areas, 0);
   if (n_areas == 0) return out;
 
-  // The areas' wall points, dealt into square tiles.
-  const auto area_walls = detail::area_wall_points(graph, detail::free_edge_cells(map, graph), params.piece_icp.point_spacing_m);
-  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
-  for (const auto& walls : area_walls) {
-    for (const auto& p : walls) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
-  }
-  if (!(lo.x() <= hi.x())) lo = hi = Eigen::Vector2d::Zero();
-  const double side = params.piece_tile_m;
-  const int columns = static_cast<int>((hi.x() - lo.x()) / side) + 1, rows = static_cast<int>((hi.y() - lo.y()) / side) + 1;
-  const std::size_t n = static_cast<std::size_t>(columns) * static_cast<std::size_t>(rows);
-  std::vector<std::vector<Eigen::Vector2d>> walls(n);
-  std::vector<std::vector<int>> wall_area(n);  // per tile point: its area
-  for (std::size_t a = 0; a < n_areas; ++a) {
-    for (const auto& p : area_walls[a]) {
-      const int c = std::min(columns - 1, static_cast<int>((p.x() - lo.x()) / side));
-      const int r = std::min(rows - 1, static_cast<int>((p.y() - lo.y()) / side));
-      const std::size_t t = static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(c);
-      walls[t].push_back(p);
-      wall_area[t].push_back(static_cast<int>(a));
-    }
-  }
-  std::vector<std::vector<Eigen::Vector2d>> sides(n);
-  for (std::size_t t = 0; t < n; ++t) sides[t] = detail::free_sides(map, walls[t], params.piece_icp.free_side_radius_m);
-  auto neighbours = [&](std::size_t t) {
-    std::vector<std::size_t> out_n;
-    const int c = static_cast<int>(t % static_cast<std::size_t>(columns)), r = static_cast<int>(t / static_cast<std::size_t>(columns));
-    if (c > 0) out_n.push_back(t - 1);
-    if (c + 1 < columns) out_n.push_back(t + 1);
-    if (r > 0) out_n.push_back(t - static_cast<std::size_t>(columns));
-    if (r + 1 < rows) out_n.push_back(t + static_cast<std::size_t>(columns));
-    return out_n;
-  };
-  auto shared_edge = [&](std::size_t a, std::size_t b) {  // the middle of two neighbouring tiles' common side
-    auto centre = [&](std::size_t t) {
-      return Eigen::Vector2d(lo.x() + side * (static_cast<double>(t % static_cast<std::size_t>(columns)) + 0.5),
-                             lo.y() + side * (static_cast<double>(t / static_cast<std::size_t>(columns)) + 0.5));
-    };
-    return Eigen::Vector2d(0.5 * (centre(a) + centre(b)));
-  };
-  auto agreement = [&](std::size_t t, const Similarity2& fit) {
-    return walls[t].empty() ? 0.0 : boundary_inlier_fraction(walls[t], reference, fit, params.wall_tolerance_m);
-  };
-
-  // Each tile's own fit, walked breadth-first from the tile with the most walls.
-  std::vector<Similarity2> fit(n, T);
-  std::vector<char> fitted(n, 0), visited(n, 0);
-  std::vector<std::size_t> order(n);
-  std::iota(order.begin(), order.end(), 0);
-  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return walls[a].size() > walls[b].size(); });
-  for (const std::size_t start : order) {
-    if (visited[start] || walls[start].empty()) continue;
-    std::queue<std::size_t> queue;
-    queue.push(start);
-    visited[start] = 1;
-    while (!queue.empty()) {
-      const std::size_t i = queue.front();
-      queue.pop();
-      if (walls[i].size() >= params.piece_min_wall_points) {
-        const Similarity2 own = refine_icp(walls[i], reference, fit[i], params.piece_icp, &sides[i]);
-        const Eigen::Vector2d c = shared_edge(i, i);
-        if (std::abs(wrap_angle(own.rotation - T.rotation)) <= params.piece_max_rotation_rad &&
-            (own * c - T * c).norm() <= params.piece_max_shift_m && agreement(i, own) >= params.piece_min_wall_agreement) {
-          fit[i] = own;
-          fitted[i] = 1;
-        }
-      }
-      for (const std::size_t j : neighbours(i)) {
-        if (visited[j] || walls[j].empty()) continue;
-        visited[j] = 1;
-        fit[j] = fit[i];  // start from this neighbour's fit (or what it started from)
-        queue.push(j);
-      }
-    }
-  }
-
-  // Fitted neighbours whose fits agree at their common side are one piece.
-  detail::AreaSets sets(n);
-  for (std::size_t t = 0; t < n; ++t) {
-    for (const std::size_t u : neighbours(t)) {
-      if (u > t && fitted[t] && fitted[u] && detail::fits_agree(fit[t], fit[u], shared_edge(t, u), params)) {
-        sets.join(static_cast<int>(t), static_cast<int>(u));
-      }
-    }
-  }
-  std::vector<std::size_t> set_points(n, 0);
-  for (std::size_t t = 0; t < n; ++t) {
-    if (fitted[t]) set_points[static_cast<std::size_t>(sets.find(static_cast<int>(t)))] += walls[t].size();
-  }
-  // Tiles in a piece big enough keep it; the rest join the neighbouring piece laying their walls best.
-  std::vector<int> root(n, -1);
-  for (std::size_t t = 0; t < n; ++t) {
-    const int r = sets.find(static_cast<int>(t));
-    if (fitted[t] && set_points[static_cast<std::size_t>(r)] >= params.piece_min_points) root[t] = r;
-  }
-  if (std::all_of(root.begin(), root.end(), [](int r) { return r < 0; })) {
-    root.assign(n, 0);  // nothing big enough to call a piece: one piece, the whole map
-  }
-  for (bool changed = true; changed;) {
-    changed = false;
-    for (std::size_t t = 0; t < n; ++t) {
-      if (root[t] >= 0) continue;
-      int best = -1;
-      double best_agreement = -1.0;
-      for (const std::size_t u : neighbours(t)) {
-        const int r = root[u];
-        if (r < 0) continue;
-        const double a = agreement(t, fit[static_cast<std::size_t>(r)]);
-        if (a > best_agreement) best = r, best_agreement = a;
-      }
-      if (best >= 0) root[t] = best, changed = true;
-    }
-  }
-  for (auto& r : root) r = std::max(r, 0);  // tiles no piece reaches (no walls between): the first
+  const detail::WallTiles tiles = detail::wall_tiles(map, graph, params);
+  const std::size_t n = tiles.size();
+  std::vector<Similarity2> fit;
+  std::vector<char> fitted;
+  detail::fit_each_tile(tiles, reference, T, params, fit, fitted);
+  const std::vector<int> root = detail::group_tiles(tiles, reference, params, fit, fitted);
 
   // Pieces: fit each on all its walls, then join neighbours whose fits agree after all.
-  auto fit_tiles = [&](const std::vector<std::size_t>& tiles, const Similarity2& start) {
-    std::vector<Eigen::Vector2d> points, piece_sides;
-    for (const std::size_t t : tiles) {
-      points.insert(points.end(), walls[t].begin(), walls[t].end());
-      piece_sides.insert(piece_sides.end(), sides[t].begin(), sides[t].end());
-    }
-    const Similarity2 own = refine_icp(points, reference, start, params.piece_icp, &piece_sides);
-    // On a cluttered map a piece's fit can slide (a corridor's length) or turn away from the whole
-    // map's transform to a worse place (Intel: 11°, a fifth of its walls on the reference's
-    // where the whole map's transform lays a quarter): the whole map's then.
-    const double own_agreement = boundary_inlier_fraction(points, reference, own, params.wall_tolerance_m);
-    return own_agreement < boundary_inlier_fraction(points, reference, T, params.wall_tolerance_m) ? T : own;
-  };
   std::vector<std::vector<std::size_t>> members(n);
   for (std::size_t t = 0; t < n; ++t) members[static_cast<std::size_t>(root[t])].push_back(t);
   std::vector<Similarity2> piece_fit(n, T);
   for (std::size_t r = 0; r < n; ++r) {
-    if (!members[r].empty()) piece_fit[r] = fit_tiles(members[r], fit[r]);
+    if (!members[r].empty()) piece_fit[r] = detail::fit_tile_group(tiles, members[r], fit[r], reference, T, params);
   }
   detail::AreaSets pieces(n);
   for (std::size_t t = 0; t < n; ++t) {
-    for (const std::size_t u : neighbours(t)) {
+    for (const std::size_t u : tiles.neighbours(t)) {
       const int a = root[t], b = root[u];
       if (u > t && a != b &&
-          detail::fits_agree(piece_fit[static_cast<std::size_t>(a)], piece_fit[static_cast<std::size_t>(b)], shared_edge(t, u), params)) {
+          detail::fits_agree(piece_fit[static_cast<std::size_t>(a)], piece_fit[static_cast<std::size_t>(b)], tiles.shared_edge(t, u), params)) {
         pieces.join(a, b);
       }
     }
   }
-
-  // Each area goes to the piece holding most of its wall points (the largest piece without any).
   std::vector<int> piece_of_tile(n);
   for (std::size_t t = 0; t < n; ++t) piece_of_tile[t] = pieces.find(root[t]);
-  std::vector<std::vector<std::size_t>> votes(n_areas);
-  for (std::size_t t = 0; t < n; ++t) {
-    for (const int a : wall_area[t]) {
-      auto& v = votes[static_cast<std::size_t>(a)];
-      if (v.empty()) v.assign(n, 0);
-      ++v[static_cast<std::size_t>(piece_of_tile[t])];
-    }
-  }
-  std::vector<std::vector<int>> grouped(n);
   std::vector<std::vector<std::size_t>> tiles_of(n);
   for (std::size_t t = 0; t < n; ++t) tiles_of[static_cast<std::size_t>(piece_of_tile[t])].push_back(t);
-  std::vector<int> area_piece(n_areas, -1);
-  for (std::size_t a = 0; a < n_areas; ++a) {
-    if (votes[a].empty()) continue;
-    area_piece[a] = static_cast<int>(std::max_element(votes[a].begin(), votes[a].end()) - votes[a].begin());
-  }
-  for (std::size_t a = 0; a < n_areas; ++a) {
-    if (area_piece[a] >= 0) grouped[static_cast<std::size_t>(area_piece[a])].push_back(static_cast<int>(a));
-  }
+
+  // Each area goes to the piece holding most of its wall points (the largest piece without any).
+  const std::vector<std::vector<int>> grouped = detail::areas_by_piece(tiles, piece_of_tile, n_areas);
   std::vector<std::pair<RigidPiece, std::size_t>> found;  // each piece with its root tile
   for (std::size_t r = 0; r < n; ++r) {
     if (grouped[r].empty()) continue;
@@ -359,11 +231,13 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
       piece.centroid += area.size_m2 * area.centroid;
     }
     if (piece.size_m2 > 0.0) piece.centroid /= piece.size_m2;
-    piece.T_reference_map = members[r].size() == tiles_of[r].size() ? piece_fit[r] : fit_tiles(tiles_of[r], piece_fit[r]);
+    piece.T_reference_map = members[r].size() == tiles_of[r].size()
+                                ? piece_fit[r]
+                                : detail::fit_tile_group(tiles, tiles_of[r], piece_fit[r], reference, T, params);
     std::size_t on = 0, all = 0;
     for (const std::size_t t : tiles_of[r]) {
-      on += reference.count_within(walls[t], piece.T_reference_map, params.wall_tolerance_m);
-      all += walls[t].size();
+      on += reference.count_within(tiles.walls[t], piece.T_reference_map, params.wall_tolerance_m);
+      all += tiles.walls[t].size();
     }
     piece.wall_agreement = all > 0 ? static_cast<double>(on) / static_cast<double>(all) : 0.0;
     found.push_back({std::move(piece), r});
@@ -375,27 +249,21 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
     found.push_back({std::move(piece), 0});
   }
   std::stable_sort(found.begin(), found.end(), [](const auto& a, const auto& b) { return a.first.size_m2 > b.first.size_m2; });
-  const Similarity2 main = found.front().first.T_reference_map;
+  detail::number_pieces(found, out);
+
   std::vector<int> index_of_root(n, 0);  // tiles of a piece no area went to: the main piece's
-  for (std::size_t k = 0; k < found.size(); ++k) {
-    RigidPiece& piece = found[k].first;
-    piece.rotation_rad = k == 0 ? 0.0 : wrap_angle(piece.T_reference_map.rotation - main.rotation);
-    piece.shift_m = k == 0 ? 0.0 : (piece.T_reference_map * piece.centroid - main * piece.centroid).norm();
-    for (const int a : piece.areas) out.piece_of_area[static_cast<std::size_t>(a)] = static_cast<int>(k);
-    index_of_root[found[k].second] = static_cast<int>(k);
-    out.pieces.push_back(std::move(piece));
-  }
-  out.tile_origin = lo;
-  out.tile_m = side;
-  out.tile_columns = columns;
-  out.tile_rows = rows;
+  for (std::size_t k = 0; k < found.size(); ++k) index_of_root[found[k].second] = static_cast<int>(k);
+  out.tile_origin = tiles.lo;
+  out.tile_m = tiles.side;
+  out.tile_columns = tiles.columns;
+  out.tile_rows = tiles.rows;
   out.piece_of_tile.resize(n);
   out.tile_fit.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
     out.piece_of_tile[t] = index_of_root[static_cast<std::size_t>(piece_of_tile[t])];
     out.tile_fit[t] = fitted[t] ? fit[t] : out.pieces[static_cast<std::size_t>(out.piece_of_tile[t])].T_reference_map;
   }
-  if (out.pieces.size() > 1) out.piece_cells = detail::piece_cells(out, walls, reference, params);
+  if (out.pieces.size() > 1) out.piece_cells = detail::piece_cells(out, tiles.walls, reference, params);
   return out;
 }
 

@@ -27,6 +27,7 @@
 #include <cstddef>
 #include <limits>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
@@ -68,12 +69,8 @@ inline Eigen::Matrix2d complex_product_rows(const Eigen::Vector2d& z) {
   return m;
 }
 
-}  // namespace detail
-
-/// Fits every map's pose to the `active` constraints; map `reference` fixes the frame. Maps not
-/// joined to the reference by active constraints are not placed.
-inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std::vector<PoseConstraint>& constraints,
-                         const std::vector<bool>& active) {
+inline void check_pose_inputs(std::size_t map_count, std::size_t reference, const std::vector<PoseConstraint>& constraints,
+                              const std::vector<bool>& active) {
   if (reference >= map_count) throw parameter_error("fit_poses: the reference map index is out of range");
   if (active.size() != constraints.size()) throw parameter_error("fit_poses: one active flag per constraint");
   for (const auto& c : constraints) {
@@ -82,18 +79,18 @@ inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std
     }
     if (!(c.weight > 0.0) || c.anchors.size() < 2) throw parameter_error("fit_poses: a constraint needs weight > 0 and two anchors");
   }
-  const std::size_t n_constraints = constraints.size();
-  PoseFit fit;
-  fit.placed.assign(map_count, false);
-  fit.T_reference_map.assign(map_count, Similarity2{});
-  fit.residual_m.assign(n_constraints, std::numeric_limits<double>::quiet_NaN());
-  fit.mirror_conflict.assign(n_constraints, false);
+}
 
-  // Each map's reflection relative to the reference, along a maximum spanning tree of the active
-  // constraints (the strongest matches decide; ties by index, so it is deterministic).
-  std::vector<bool> reflected(map_count, false);
+/// Each map's reflection relative to the reference, along a maximum spanning tree of the active
+/// constraints (the strongest matches decide; ties by index, so it is deterministic). Marks the
+/// maps the tree reaches in `fit.placed`, and the active constraints among them whose reflection
+/// disagrees in `fit.mirror_conflict`; returns the reflections and the constraints to use.
+inline std::pair<std::vector<bool>, std::vector<std::size_t>> fix_reflections(std::size_t reference,
+                                                                               const std::vector<PoseConstraint>& constraints,
+                                                                               const std::vector<bool>& active, PoseFit& fit) {
+  const std::size_t n_constraints = constraints.size();
+  std::vector<bool> reflected(fit.placed.size(), false);
   fit.placed[reference] = true;
-  std::vector<bool> in_tree(n_constraints, false);
   for (;;) {
     std::size_t best = n_constraints;
     for (std::size_t e = 0; e < n_constraints; ++e) {
@@ -107,7 +104,6 @@ inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std
     if (fit.placed[c.dest]) reflected[c.source] = reflected[c.dest] != c.T_dest_source.reflected;
     else reflected[c.dest] = reflected[c.source] != c.T_dest_source.reflected;
     fit.placed[c.source] = fit.placed[c.dest] = true;
-    in_tree[best] = true;
   }
   std::vector<std::size_t> used;
   for (std::size_t e = 0; e < n_constraints; ++e) {
@@ -119,6 +115,62 @@ inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std
     }
     used.push_back(e);
   }
+  return {std::move(reflected), std::move(used)};
+}
+
+/// The linear system of the `used` constraints, solved. Per anchor p of constraint s → d, with
+/// q = T_dest_source(p): a_s·F_s(p) + t_s − a_d·F_d(q) − t_d = 0, each row weighted by
+/// sqrt(weight / anchors). `column[m]`: map m's first unknown (a.re, a.im, t.x, t.y), −1 for the
+/// reference (a = 1, t = 0, known). With `rotations` given (second pass), only the translations
+/// are unknown (columns halved).
+inline Eigen::VectorXd solve_poses(const std::vector<PoseConstraint>& constraints, const std::vector<std::size_t>& used,
+                                   const std::vector<bool>& reflected, const std::vector<int>& column, int unknowns,
+                                   const std::vector<Eigen::Vector2d>* rotations) {
+  std::size_t rows = 0;
+  for (std::size_t e : used) rows += 2 * constraints[e].anchors.size();
+  const int cols = rotations ? unknowns / 2 : unknowns;
+  Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows), cols);
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows));
+  Eigen::Index row = 0;
+  for (std::size_t e : used) {
+    const auto& c = constraints[e];
+    const double w = std::sqrt(c.weight / static_cast<double>(c.anchors.size()));
+    for (const auto& p : c.anchors) {
+      const Eigen::Vector2d q = c.T_dest_source * p;
+      for (const auto& [map, point, sign] : {std::tuple{c.source, p, 1.0}, std::tuple{c.dest, q, -1.0}}) {
+        const Eigen::Vector2d z = flip_if(point, reflected[map]);
+        if (column[map] < 0) {
+          b.segment<2>(row) -= w * sign * z;
+          continue;
+        }
+        if (rotations) {
+          const Eigen::Vector2d& a = (*rotations)[map];
+          b.segment<2>(row) -= w * sign * complex_product_rows(z) * a;
+          A.block<2, 2>(row, column[map] / 2) += w * sign * Eigen::Matrix2d::Identity();
+        } else {
+          A.block<2, 2>(row, column[map]) += w * sign * complex_product_rows(z);
+          A.block<2, 2>(row, column[map] + 2) += w * sign * Eigen::Matrix2d::Identity();
+        }
+      }
+      row += 2;
+    }
+  }
+  return Eigen::VectorXd(A.colPivHouseholderQr().solve(b));
+}
+
+}  // namespace detail
+
+/// Fits every map's pose to the `active` constraints; map `reference` fixes the frame. Maps not
+/// joined to the reference by active constraints are not placed.
+inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std::vector<PoseConstraint>& constraints,
+                         const std::vector<bool>& active) {
+  detail::check_pose_inputs(map_count, reference, constraints, active);
+  PoseFit fit;
+  fit.placed.assign(map_count, false);
+  fit.T_reference_map.assign(map_count, Similarity2{});
+  fit.residual_m.assign(constraints.size(), std::numeric_limits<double>::quiet_NaN());
+  fit.mirror_conflict.assign(constraints.size(), false);
+  const auto [reflected, used] = detail::fix_reflections(reference, constraints, active, fit);
 
   // Unknowns: (a.re, a.im, t.x, t.y) of every placed map but the reference (a = 1, t = 0).
   std::vector<int> column(map_count, -1);
@@ -136,44 +188,8 @@ inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std
     for (std::size_t e : used) fit.residual_m[e] = 0.0;
     return fit;
   }
-  std::size_t rows = 0;
-  for (std::size_t e : used) rows += 2 * constraints[e].anchors.size();
-
-  // One anchor p of constraint s → d, q = T_dest_source(p):
-  //   a_s·F_s(p) + t_s − a_d·F_d(q) − t_d = 0, each row weighted by sqrt(weight / anchors).
-  // With `rotations` given (second pass), only the translations are unknown.
-  auto solve = [&](const std::vector<Eigen::Vector2d>* rotations) {
-    const int cols = rotations ? unknowns / 2 : unknowns;
-    Eigen::MatrixXd A = Eigen::MatrixXd::Zero(static_cast<Eigen::Index>(rows), cols);
-    Eigen::VectorXd b = Eigen::VectorXd::Zero(static_cast<Eigen::Index>(rows));
-    Eigen::Index row = 0;
-    for (std::size_t e : used) {
-      const auto& c = constraints[e];
-      const double w = std::sqrt(c.weight / static_cast<double>(c.anchors.size()));
-      for (const auto& p : c.anchors) {
-        const Eigen::Vector2d q = c.T_dest_source * p;
-        for (const auto& [map, point, sign] : {std::tuple{c.source, p, 1.0}, std::tuple{c.dest, q, -1.0}}) {
-          const Eigen::Vector2d z = detail::flip_if(point, reflected[map]);
-          if (column[map] < 0) {  // the reference: a = 1, t = 0, known
-            b.segment<2>(row) -= w * sign * z;
-            continue;
-          }
-          if (rotations) {
-            const Eigen::Vector2d& a = (*rotations)[map];
-            b.segment<2>(row) -= w * sign * detail::complex_product_rows(z) * a;
-            A.block<2, 2>(row, column[map] / 2) += w * sign * Eigen::Matrix2d::Identity();
-          } else {
-            A.block<2, 2>(row, column[map]) += w * sign * detail::complex_product_rows(z);
-            A.block<2, 2>(row, column[map] + 2) += w * sign * Eigen::Matrix2d::Identity();
-          }
-        }
-        row += 2;
-      }
-    }
-    return Eigen::VectorXd(A.colPivHouseholderQr().solve(b));
-  };
-
-  const Eigen::VectorXd similarity = solve(nullptr);
+  // A similarity per map first, then each made rigid (a / |a|) and the translations solved again.
+  const Eigen::VectorXd similarity = detail::solve_poses(constraints, used, reflected, column, unknowns, nullptr);
   std::vector<Eigen::Vector2d> rotations(map_count, Eigen::Vector2d(1.0, 0.0));
   for (std::size_t m = 0; m < map_count; ++m) {
     if (column[m] < 0) continue;
@@ -181,7 +197,7 @@ inline PoseFit fit_poses(std::size_t map_count, std::size_t reference, const std
     const double norm = a.norm();
     rotations[m] = norm > 0.0 ? Eigen::Vector2d(a / norm) : Eigen::Vector2d(1.0, 0.0);
   }
-  const Eigen::VectorXd translations = solve(&rotations);
+  const Eigen::VectorXd translations = detail::solve_poses(constraints, used, reflected, column, unknowns, &rotations);
   for (std::size_t m = 0; m < map_count; ++m) {
     if (column[m] < 0) continue;
     Similarity2& T = fit.T_reference_map[m];

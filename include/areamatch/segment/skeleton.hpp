@@ -157,33 +157,20 @@ inline void edge_points(const Eigen::Vector2d& v0, const Eigen::Vector2d& v1, bo
   points.push_back(v1);
 }
 
-}  // namespace detail
+/// A Voronoi edge kept for the skeleton: its end vertices (by index in the diagram, so the result
+/// does not depend on memory addresses) and its samples.
+struct KeptEdge {
+  std::size_t v0, v1;
+  std::vector<SkeletonSample> samples;
+};
 
-/// Builds the pruned skeleton of `space` from its boundary (see the file comment).
-inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& boundary, double resolution,
-                               const SkeletonParams& params = {}) {
-  params.validate();
-  namespace bp = boost::polygon;
-  const double min_clearance = params.min_clearance_m / resolution;
-  const double step = params.sample_step_m / resolution;
-  Skeleton skeleton;
-  skeleton.lattice_offset = Eigen::Vector2d(space.offset_col, space.offset_row);
-  if (boundary.segments.empty()) return skeleton;
-
-  bp::voronoi_diagram<double> diagram;
-  // Boost.Polygon's builder, with corner circle events computed without multiprecision when
-  // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
-  detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram,
-                                    params.fast_circle_events);
-
+/// The diagram's finite primary edges that run through free space at least `min_clearance` (lattice
+/// units) from the walls all along, sampled every `step`; each undirected edge once. Counts the
+/// edges looked at in `skeleton.voronoi_edges`.
+inline std::vector<KeptEdge> kept_edges(const boost::polygon::voronoi_diagram<double>& diagram, const FreeSpace& space,
+                                        const BoundarySegments& boundary, double min_clearance, double step, Skeleton& skeleton) {
   auto is_free_at = [&](double x, double y) {
     return space.is_free(static_cast<int>(std::floor(x)), static_cast<int>(std::floor(y)));
-  };
-  // Kept edges as (vertex index, vertex index, samples); vertices indexed by their position in
-  // the diagram, so the result does not depend on memory addresses.
-  struct KeptEdge {
-    std::size_t v0, v1;
-    std::vector<SkeletonSample> samples;
   };
   std::vector<KeptEdge> kept;
   std::vector<Eigen::Vector2d> points;
@@ -195,13 +182,13 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
     const auto* a = edge.vertex0();
     const auto* b = edge.vertex1();
     if (!is_free_at(a->x(), a->y()) || !is_free_at(b->x(), b->y())) continue;
-    const detail::VoronoiSite s0 = detail::site_of(*edge.cell(), boundary.segments);
-    const detail::VoronoiSite s1 = detail::site_of(*edge.twin()->cell(), boundary.segments);
+    const VoronoiSite s0 = site_of(*edge.cell(), boundary.segments);
+    const VoronoiSite s1 = site_of(*edge.twin()->cell(), boundary.segments);
     const Eigen::Vector2d p0(a->x(), a->y()), p1(b->x(), b->y());
     if ((s0.foot(p0) - p0).norm() < min_clearance || (s0.foot(p1) - p1).norm() < min_clearance) continue;
     KeptEdge k{static_cast<std::size_t>(a - first_vertex), static_cast<std::size_t>(b - first_vertex), {}};
     bool passable = true;
-    detail::edge_points(p0, p1, edge.is_curved(), s0, s1, step, points);
+    edge_points(p0, p1, edge.is_curved(), s0, s1, step, points);
     k.samples.reserve(points.size());
     for (const Eigen::Vector2d& p : points) {
       SkeletonSample sample;
@@ -217,12 +204,15 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
     }
     if (passable) kept.push_back(std::move(k));
   }
+  return kept;
+}
 
-  // Graph over the kept edges; nodes are vertices of degree ≠ 2 (plus one anchor per pure loop).
+/// The graph over the kept edges into `skeleton`: nodes are vertices of degree ≠ 2 (plus one
+/// anchor per pure loop), branches the chains of edges between them.
+inline void link_kept_edges(const std::vector<KeptEdge>& kept, std::size_t vertex_count, Skeleton& skeleton) {
   // Per diagram vertex (by index, ascending): its kept edges in the order they were kept.
-  const std::size_t vertex_count = diagram.vertices().size();
-  const auto incident = detail::build_adjacency<std::size_t>(vertex_count, kept.size(), [&](std::size_t i) {
-    return detail::LinkEnds<std::size_t>{kept[i].v0, i, kept[i].v1, i};
+  const auto incident = build_adjacency<std::size_t>(vertex_count, kept.size(), [&](std::size_t i) {
+    return LinkEnds<std::size_t>{kept[i].v0, i, kept[i].v1, i};
   });
   auto degree_of = [&](std::size_t vertex) { return incident.degree(vertex); };
   auto first_edge = [&](std::size_t vertex) { return *incident.begin(vertex); };
@@ -277,10 +267,11 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
     make_node(vertex, sample_at(first_edge(vertex), vertex));
     walk(vertex, first_edge(vertex));
   }
+}
 
-  // Prune short, narrow dead ends until none is left.
-  const double spur_length = params.spur_length_m / resolution;
-  const double keep_clearance = params.keep_clearance_m / resolution;
+/// Prunes short (< `spur_length`), narrow (never `keep_clearance` wide) dead ends until none is
+/// left; lattice units.
+inline void prune_spurs(Skeleton& skeleton, double spur_length, double keep_clearance) {
   bool pruned = true;
   while (pruned) {
     pruned = false;
@@ -299,6 +290,27 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
       pruned = true;
     }
   }
+}
+
+}  // namespace detail
+
+/// Builds the pruned skeleton of `space` from its boundary (see the file comment).
+inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& boundary, double resolution,
+                               const SkeletonParams& params = {}) {
+  params.validate();
+  Skeleton skeleton;
+  skeleton.lattice_offset = Eigen::Vector2d(space.offset_col, space.offset_row);
+  if (boundary.segments.empty()) return skeleton;
+
+  boost::polygon::voronoi_diagram<double> diagram;
+  // Boost.Polygon's builder, with corner circle events computed without multiprecision when
+  // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
+  detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram,
+                                    params.fast_circle_events);
+  const std::vector<detail::KeptEdge> kept = detail::kept_edges(
+      diagram, space, boundary, params.min_clearance_m / resolution, params.sample_step_m / resolution, skeleton);
+  detail::link_kept_edges(kept, diagram.vertices().size(), skeleton);
+  detail::prune_spurs(skeleton, params.spur_length_m / resolution, params.keep_clearance_m / resolution);
   return skeleton;
 }
 

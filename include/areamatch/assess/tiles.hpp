@@ -1,0 +1,216 @@
+#pragma once
+/// \file assess/tiles.hpp
+/// The tile stages of `find_pieces` (assess/pieces.hpp): a map's walls dealt into square tiles,
+/// each tile's own rigid fit (a breadth-first walk, each fit starting from a neighbour's), and
+/// the tiles grouped where neighbouring fits agree.
+
+#include "../area_graph.hpp"
+#include "../grid.hpp"
+#include "../match/correspondence.hpp"
+#include "../match/refine.hpp"
+#include "../transform.hpp"
+#include "params.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <cmath>
+#include <cstddef>
+#include <limits>
+#include <numeric>
+#include <queue>
+#include <vector>
+
+namespace areamatch {
+namespace detail {
+
+/// Union-find over areas (smaller root wins, so the result does not depend on the join order).
+class AreaSets {
+ public:
+  explicit AreaSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
+  int find(int a) {
+    while (parent_[static_cast<std::size_t>(a)] != a) {
+      parent_[static_cast<std::size_t>(a)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(a)])];
+      a = parent_[static_cast<std::size_t>(a)];
+    }
+    return a;
+  }
+  void join(int a, int b) {
+    a = find(a);
+    b = find(b);
+    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
+  }
+
+ private:
+  std::vector<int> parent_;
+};
+
+/// Whether two fits agree at `at` (map world): turn and placed position.
+inline bool fits_agree(const Similarity2& a, const Similarity2& b, const Eigen::Vector2d& at, const AssessParams& params) {
+  return std::abs(wrap_angle(a.rotation - b.rotation)) <= params.piece_rotation_tolerance_rad &&
+         (a * at - b * at).norm() <= params.piece_shift_tolerance_m;
+}
+
+/// A map's wall points (its areas' free-space edges) dealt into square tiles, row-major.
+struct WallTiles {
+  Eigen::Vector2d lo = Eigen::Vector2d::Zero();  ///< the tiles' corner, map world
+  double side = 1.0;
+  int columns = 0, rows = 0;
+  std::vector<std::vector<Eigen::Vector2d>> walls;  ///< per tile: its wall points
+  std::vector<std::vector<int>> wall_area;          ///< per tile point: its area
+  std::vector<std::vector<Eigen::Vector2d>> sides;  ///< per tile point: its free side
+
+  std::size_t size() const { return walls.size(); }
+  std::vector<std::size_t> neighbours(std::size_t t) const {
+    std::vector<std::size_t> out;
+    const int c = static_cast<int>(t % static_cast<std::size_t>(columns)), r = static_cast<int>(t / static_cast<std::size_t>(columns));
+    if (c > 0) out.push_back(t - 1);
+    if (c + 1 < columns) out.push_back(t + 1);
+    if (r > 0) out.push_back(t - static_cast<std::size_t>(columns));
+    if (r + 1 < rows) out.push_back(t + static_cast<std::size_t>(columns));
+    return out;
+  }
+  Eigen::Vector2d centre(std::size_t t) const {
+    return Eigen::Vector2d(lo.x() + side * (static_cast<double>(t % static_cast<std::size_t>(columns)) + 0.5),
+                           lo.y() + side * (static_cast<double>(t / static_cast<std::size_t>(columns)) + 0.5));
+  }
+  /// The middle of two neighbouring tiles' common side (a tile's centre for a == b).
+  Eigen::Vector2d shared_edge(std::size_t a, std::size_t b) const { return Eigen::Vector2d(0.5 * (centre(a) + centre(b))); }
+  /// Share of tile t's walls that `fit` lays on a reference wall.
+  double agreement(std::size_t t, const Similarity2& fit, const BoundaryLookup& reference, const AssessParams& params) const {
+    return walls[t].empty() ? 0.0 : boundary_inlier_fraction(walls[t], reference, fit, params.wall_tolerance_m);
+  }
+};
+
+inline WallTiles wall_tiles(const OccupancyGrid& map, const AreaGraph& graph, const AssessParams& params) {
+  WallTiles tiles;
+  const auto area_walls = area_wall_points(graph, free_edge_cells(map, graph), params.piece_icp.point_spacing_m);
+  Eigen::Vector2d lo = Eigen::Vector2d::Constant(std::numeric_limits<double>::max()), hi = -lo;
+  for (const auto& walls : area_walls) {
+    for (const auto& p : walls) lo = lo.cwiseMin(p), hi = hi.cwiseMax(p);
+  }
+  if (!(lo.x() <= hi.x())) lo = hi = Eigen::Vector2d::Zero();
+  tiles.lo = lo;
+  tiles.side = params.piece_tile_m;
+  tiles.columns = static_cast<int>((hi.x() - lo.x()) / tiles.side) + 1;
+  tiles.rows = static_cast<int>((hi.y() - lo.y()) / tiles.side) + 1;
+  const std::size_t n = static_cast<std::size_t>(tiles.columns) * static_cast<std::size_t>(tiles.rows);
+  tiles.walls.resize(n);
+  tiles.wall_area.resize(n);
+  for (std::size_t a = 0; a < area_walls.size(); ++a) {
+    for (const auto& p : area_walls[a]) {
+      const int c = std::min(tiles.columns - 1, static_cast<int>((p.x() - lo.x()) / tiles.side));
+      const int r = std::min(tiles.rows - 1, static_cast<int>((p.y() - lo.y()) / tiles.side));
+      const std::size_t t = static_cast<std::size_t>(r) * static_cast<std::size_t>(tiles.columns) + static_cast<std::size_t>(c);
+      tiles.walls[t].push_back(p);
+      tiles.wall_area[t].push_back(static_cast<int>(a));
+    }
+  }
+  tiles.sides.resize(n);
+  for (std::size_t t = 0; t < n; ++t) tiles.sides[t] = free_sides(map, tiles.walls[t], params.piece_icp.free_side_radius_m);
+  return tiles;
+}
+
+/// Each tile's own fit, walked breadth-first from the tile with the most walls, each starting
+/// from the neighbour it was reached from. `fitted[t]`: the fit counts (enough walls, near the
+/// whole map's transform `T`, laying most of them); the others keep what they started from.
+inline void fit_each_tile(const WallTiles& tiles, const BoundaryLookup& reference, const Similarity2& T,
+                          const AssessParams& params, std::vector<Similarity2>& fit, std::vector<char>& fitted) {
+  const std::size_t n = tiles.size();
+  fit.assign(n, T);
+  fitted.assign(n, 0);
+  std::vector<char> visited(n, 0);
+  std::vector<std::size_t> order(n);
+  std::iota(order.begin(), order.end(), 0);
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return tiles.walls[a].size() > tiles.walls[b].size(); });
+  for (const std::size_t start : order) {
+    if (visited[start] || tiles.walls[start].empty()) continue;
+    std::queue<std::size_t> queue;
+    queue.push(start);
+    visited[start] = 1;
+    while (!queue.empty()) {
+      const std::size_t i = queue.front();
+      queue.pop();
+      if (tiles.walls[i].size() >= params.piece_min_wall_points) {
+        const Similarity2 own = refine_icp(tiles.walls[i], reference, fit[i], params.piece_icp, &tiles.sides[i]);
+        const Eigen::Vector2d c = tiles.shared_edge(i, i);
+        if (std::abs(wrap_angle(own.rotation - T.rotation)) <= params.piece_max_rotation_rad &&
+            (own * c - T * c).norm() <= params.piece_max_shift_m &&
+            tiles.agreement(i, own, reference, params) >= params.piece_min_wall_agreement) {
+          fit[i] = own;
+          fitted[i] = 1;
+        }
+      }
+      for (const std::size_t j : tiles.neighbours(i)) {
+        if (visited[j] || tiles.walls[j].empty()) continue;
+        visited[j] = 1;
+        fit[j] = fit[i];  // start from this neighbour's fit (or what it started from)
+        queue.push(j);
+      }
+    }
+  }
+}
+
+/// Per tile, the root tile of its group: fitted neighbours whose fits agree at their common side
+/// are one group; groups with enough wall points keep their tiles, the rest join the neighbouring
+/// group laying their walls best (tiles no group reaches: the first).
+inline std::vector<int> group_tiles(const WallTiles& tiles, const BoundaryLookup& reference, const AssessParams& params,
+                                    const std::vector<Similarity2>& fit, const std::vector<char>& fitted) {
+  const std::size_t n = tiles.size();
+  AreaSets sets(n);
+  for (std::size_t t = 0; t < n; ++t) {
+    for (const std::size_t u : tiles.neighbours(t)) {
+      if (u > t && fitted[t] && fitted[u] && fits_agree(fit[t], fit[u], tiles.shared_edge(t, u), params)) {
+        sets.join(static_cast<int>(t), static_cast<int>(u));
+      }
+    }
+  }
+  std::vector<std::size_t> set_points(n, 0);
+  for (std::size_t t = 0; t < n; ++t) {
+    if (fitted[t]) set_points[static_cast<std::size_t>(sets.find(static_cast<int>(t)))] += tiles.walls[t].size();
+  }
+  std::vector<int> root(n, -1);
+  for (std::size_t t = 0; t < n; ++t) {
+    const int r = sets.find(static_cast<int>(t));
+    if (fitted[t] && set_points[static_cast<std::size_t>(r)] >= params.piece_min_points) root[t] = r;
+  }
+  if (std::all_of(root.begin(), root.end(), [](int r) { return r < 0; })) {
+    root.assign(n, 0);  // nothing big enough to call a piece: one piece, the whole map
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (std::size_t t = 0; t < n; ++t) {
+      if (root[t] >= 0) continue;
+      int best = -1;
+      double best_agreement = -1.0;
+      for (const std::size_t u : tiles.neighbours(t)) {
+        const int r = root[u];
+        if (r < 0) continue;
+        const double a = tiles.agreement(t, fit[static_cast<std::size_t>(r)], reference, params);
+        if (a > best_agreement) best = r, best_agreement = a;
+      }
+      if (best >= 0) root[t] = best, changed = true;
+    }
+  }
+  for (auto& r : root) r = std::max(r, 0);
+  return root;
+}
+
+/// One fit on all the walls of `members` (tiles), from `start`; the whole map's transform `T`
+/// where that lays fewer of them. On a cluttered map a piece's fit can slide (a corridor's length)
+/// or turn away from the whole map's transform to a worse place (Intel: 11°, a fifth of its walls
+/// on the reference's where the whole map's transform lays a quarter).
+inline Similarity2 fit_tile_group(const WallTiles& tiles, const std::vector<std::size_t>& members, const Similarity2& start,
+                                  const BoundaryLookup& reference, const Similarity2& T, const AssessParams& params) {
+  std::vector<Eigen::Vector2d> points, piece_sides;
+  for (const std::size_t t : members) {
+    points.insert(points.end(), tiles.walls[t].begin(), tiles.walls[t].end());
+    piece_sides.insert(piece_sides.end(), tiles.sides[t].begin(), tiles.sides[t].end());
+  }
+  const Similarity2 own = refine_icp(points, reference, start, params.piece_icp, &piece_sides);
+  const double own_agreement = boundary_inlier_fraction(points, reference, own, params.wall_tolerance_m);
+  return own_agreement < boundary_inlier_fraction(points, reference, T, params.wall_tolerance_m) ? T : own;
+}
+
+}  // namespace detail
+}  // namespace areamatch

@@ -1,0 +1,207 @@
+#pragma once
+/// \file segment/area_growth.hpp
+/// Steps 1–3 of `build_areas`: every passage sealed with a line of barrier cells, then every
+/// skeleton region grown over free space from its samples (the core first, then the fringe), and
+/// the barrier cells given to a neighbouring region.
+
+#include "../detail/run_components.hpp"
+#include "binarize.hpp"
+#include "rooms.hpp"
+
+#include <Eigen/Core>
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <cstddef>
+#include <cstdint>
+#include <queue>
+#include <utility>
+#include <vector>
+
+namespace areamatch {
+namespace detail {
+
+/// Marks the cells a straight line crosses, with no diagonal gaps (so a 4-connected flood
+/// cannot slip through).
+template <class Mark>
+void supercover_line(const Eigen::Vector2d& a, const Eigen::Vector2d& b, Mark&& mark) {
+  const double length = (b - a).norm();
+  const int steps = std::max(1, static_cast<int>(std::ceil(length * 4.0)));
+  int pc = static_cast<int>(std::floor(a.x())), pr = static_cast<int>(std::floor(a.y()));
+  mark(pc, pr);
+  for (int i = 1; i <= steps; ++i) {
+    const Eigen::Vector2d p = a + (b - a) * (static_cast<double>(i) / steps);
+    const int c = static_cast<int>(std::floor(p.x())), r = static_cast<int>(std::floor(p.y()));
+    if (c != pc && r != pr) mark(c, pr);  // close the diagonal step
+    if (c != pc || r != pr) mark(c, r);
+    pc = c;
+    pr = r;
+  }
+}
+
+/// Index offsets of a cell's right, left, lower and upper neighbours in a row-major image `W`
+/// cells wide (callers keep off the image's border).
+inline std::array<std::ptrdiff_t, 4> four_neighbour_offsets(int W) {
+  return {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
+}
+
+/// The first step of labelling, done on runs instead of cells. `label` holds only the seeds
+/// (listed in `seeds`); growth from them runs over the cells of `core` (barrier cells already
+/// taken out), 4-connected. A connected piece of the core that the seeds of just one region touch
+/// ends up wholly in that region, whatever the order of growth: such pieces are labelled here and
+/// cleared from `core`. Pieces that seeds of several regions touch are left for the cell-by-cell
+/// growth, which decides their borders by distance exactly as before.
+inline void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<int>& label,
+                                  const std::vector<std::uint32_t>& seeds, int W, int H) {
+  const RunComponents pieces = run_components(core, W, H, 1, false);
+  constexpr int unreached = -1, contested = -2;
+  std::vector<int> region_of_piece(pieces.runs.size(), unreached);
+  auto touch = [&](std::size_t cell, int region) {
+    const std::size_t run = pieces.run_at(static_cast<int>(cell % W), static_cast<int>(cell / W));
+    if (run == RunComponents::none) return false;
+    int& slot = region_of_piece[pieces.component[run]];
+    if (slot == unreached) slot = region;
+    else if (slot != region) slot = contested;
+    return true;
+  };
+  for (std::uint32_t seed : seeds) {
+    const int region = label[seed];
+    if (touch(seed, region)) continue;
+    // A seed off the passable cells grows into every passable neighbour. Seeds are free cells
+    // and the mask's border is obstacle, so all four neighbours exist.
+    for (std::ptrdiff_t d : four_neighbour_offsets(W)) {
+      touch(static_cast<std::size_t>(static_cast<std::ptrdiff_t>(seed) + d), region);
+    }
+  }
+  for (std::size_t i = 0; i < pieces.runs.size(); ++i) {
+    const int region = region_of_piece[pieces.component[i]];
+    if (region < 0) continue;
+    const CellRun& run = pieces.runs[i];
+    const auto from = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.begin);
+    const auto to = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.end);
+    std::fill(label.begin() + from, label.begin() + to, region);
+    std::fill(core.begin() + from, core.begin() + to, std::uint8_t{0});
+  }
+}
+
+/// The labels while areas are built: a region id (≥ 0) per cell of the cropped mask, or one of
+/// these.
+inline constexpr int unlabelled = -1, barrier = -2;
+
+/// Step 1: seals every passage with a line of barrier cells (marked in `label`, taken out of
+/// `core`), so growth cannot cross it. Doors are sealed one cell beyond both walls; junction
+/// spokes start at the junction. Returns the barrier cells, ascending.
+inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetection& rooms, std::vector<int>& label,
+                                                std::vector<std::uint8_t>& core) {
+  const int W = space.width;
+  std::vector<std::uint32_t> barrier_cells;
+  for (const auto& p : rooms.passages) {
+    const Eigen::Vector2d direction = (p.line_b - p.line_a).normalized();
+    supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
+      if (!space.is_free(c, r)) return;
+      const std::size_t i = static_cast<std::size_t>(r) * W + c;
+      if (label[i] == barrier) return;
+      label[i] = barrier;
+      core[i] = 0;  // growth never enters a barrier cell
+      barrier_cells.push_back(static_cast<std::uint32_t>(i));
+    });
+  }
+  std::sort(barrier_cells.begin(), barrier_cells.end());
+  return barrier_cells;
+}
+
+/// Step 2: grows every region from its skeleton samples, 4-connected: first over the core, then
+/// `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only that
+/// far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
+inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int fringe_steps, std::vector<int>& label,
+                         std::vector<std::uint8_t>& core) {
+  const int W = space.width, H = space.height;
+  const SampleGraph& g = rooms.graph;
+  std::vector<std::uint32_t> queue;
+  for (std::size_t s = 0; s < g.samples.size(); ++s) {
+    const int region = rooms.region_of_sample[s];
+    if (region < 0) continue;
+    const int c = static_cast<int>(std::floor(g.samples[s].position.x()));
+    const int r = static_cast<int>(std::floor(g.samples[s].position.y()));
+    if (!space.is_free(c, r)) continue;
+    const std::size_t i = static_cast<std::size_t>(r) * W + c;
+    if (label[i] != unlabelled) continue;  // a barrier, or seeded already
+    label[i] = region;
+    queue.push_back(static_cast<std::uint32_t>(i));
+  }
+  const auto neighbour_offset = four_neighbour_offsets(W);
+  // Breadth-first growth; into_fringe grows one step (one ring of cells) per call. Over the core,
+  // a cell is taken out of `core` when it is labelled, so `core` alone says what is still open.
+  auto grow = [&](std::vector<std::uint32_t>& frontier, bool into_fringe) {
+    std::vector<std::uint32_t> next;
+    for (std::size_t head = 0; head < frontier.size(); ++head) {
+      const std::size_t i = frontier[head];
+      for (std::ptrdiff_t d : neighbour_offset) {
+        const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
+        if (into_fringe) {
+          if (label[j] != unlabelled || !space.free[j]) continue;
+        } else {
+          if (!core[j]) continue;
+          core[j] = 0;
+        }
+        label[j] = label[i];
+        (into_fringe ? next : frontier).push_back(static_cast<std::uint32_t>(j));
+      }
+    }
+    frontier.swap(next);
+  };
+  // Most core components are reached by one region only: those are filled run by run and taken
+  // out of `core`, so the cell-by-cell growth only settles the contested ones — with the same
+  // result, since growth never crosses from one component into another.
+  fill_uncontested_core(core, label, queue, W, H);
+  for (std::uint32_t seed : queue) core[seed] = 0;  // labelled: no longer open
+  grow(queue, false);
+  queue.clear();
+  // The fringe starts from labelled cells next to unlabelled free space (labelled cells are
+  // free: only free runs are looked at).
+  for (int r = 0; r < H; ++r) {
+    const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
+    for (int c = find_byte_equal(free_row, 0, W, 1); c < W; c = find_byte_equal(free_row, c, W, 1)) {
+      const int end = find_byte_not_equal(free_row, c, W, 1);
+      for (; c < end; ++c) {
+        const std::size_t i = static_cast<std::size_t>(r) * W + c;
+        if (label[i] < 0) continue;
+        for (std::ptrdiff_t d : neighbour_offset) {
+          const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
+          if (label[j] == unlabelled && space.free[j]) {
+            queue.push_back(static_cast<std::uint32_t>(i));
+            break;
+          }
+        }
+      }
+    }
+  }
+  for (int ring = 0; ring < fringe_steps && !queue.empty(); ++ring) grow(queue, true);
+}
+
+/// Step 3: each barrier cell joins the region most of its neighbours belong to (ties: the lower id).
+inline void assign_barrier_cells(const std::vector<std::uint32_t>& barrier_cells, int W, std::vector<int>& label) {
+  const auto neighbour_offset = four_neighbour_offsets(W);
+  auto majority_of_neighbours = [&](std::size_t i) {
+    int candidates[4], votes[4], count = 0;
+    for (std::ptrdiff_t d : neighbour_offset) {
+      const int l = label[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d)];
+      if (l < 0) continue;
+      int k = 0;
+      while (k < count && candidates[k] != l) ++k;
+      if (k == count) candidates[count] = l, votes[count++] = 0;
+      ++votes[k];
+    }
+    int best = -1, best_votes = 0;
+    for (int k = 0; k < count; ++k)
+      if (votes[k] > best_votes || (votes[k] == best_votes && candidates[k] < best)) best = candidates[k], best_votes = votes[k];
+    return best;
+  };
+  std::vector<int> barrier_labels;
+  for (std::uint32_t i : barrier_cells) barrier_labels.push_back(majority_of_neighbours(i));
+  for (std::size_t k = 0; k < barrier_cells.size(); ++k) label[barrier_cells[k]] = barrier_labels[k];
+}
+
+}  // namespace detail
+}  // namespace areamatch
