@@ -1036,27 +1036,9 @@ std::string hex_color(const areamatch::Rgb& c) {
   return text;
 }
 
-int run_merge(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "non-rigid", "help"},
-                  {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
-                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads", "control-spacing", "bend-length"});
-  if (args.flag("help")) {
-    std::cout << kMergeHelp;
-    return 0;
-  }
-  make_output_folders(args, {"out", "png"});
-  const std::vector<std::string>& paths = args.positional();
-  if (paths.size() < 2) throw UsageError("expected at least two maps: MAP MAP...");
-  namespace fs = std::filesystem;
-  auto same_file = [](const std::string& a, const std::string& b) {
-    std::error_code error;
-    return fs::equivalent(a, b, error) || fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
-  };
-  for (std::size_t i = 0; i < paths.size(); ++i) {
-    for (std::size_t j = 0; j < i; ++j) {
-      if (same_file(paths[i], paths[j])) throw UsageError("map '" + paths[i] + "' is given twice (as '" + paths[j] + "')");
-    }
-  }
+/// `areamatch merge`'s MergeParams from its options.
+template <class SameFile>
+areamatch::MergeParams merge_params_from(const Args& args, const std::vector<std::string>& paths, const SameFile& same_file) {
   areamatch::MergeParams merge_params;
   merge_params.names = paths;
   if (const auto reference = args.text("reference")) {
@@ -1079,6 +1061,73 @@ int run_merge(const std::vector<std::string>& tokens) {
   if (const auto v = args.number("control-spacing", true)) merge_params.warp.control_spacing_m = *v;
   if (const auto v = args.number("bend-length", true)) merge_params.warp.bend_length_m = *v;
   merge_params.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(areamatch::default_program_threads));
+  return merge_params;
+}
+
+/// `areamatch merge`'s summary without --json: what was placed where, the merged map, dropped matches.
+void print_merge_summary(const areamatch::MergeResult& result, const std::vector<std::string>& paths,
+                         const areamatch::MergeParams& merge_params, bool drawn, double total_s, double prepare_s) {
+  std::size_t placed = 0, used = 0, accepted = 0;
+  for (const auto& m : result.maps) placed += m.placed;
+  for (const auto& e : result.edges) used += e.used, accepted += e.match.ok;
+  std::cout << "placed " << placed << " of " << paths.size() << " maps in the frame of " << paths[result.reference] << " ("
+            << result.edges.size() << " matches, " << accepted << " accepted, " << used << " used), "
+            << format_fixed(1000.0 * total_s, 0) << " ms (prepare " << format_fixed(1000.0 * prepare_s, 0)
+            << ", match " << format_fixed(1000.0 * result.timings.matching_s, 0)
+            << (merge_params.non_rigid ? ", warp " + format_fixed(1000.0 * result.timings.warp_s, 0) : std::string()) << ", fuse "
+            << format_fixed(1000.0 * result.timings.fuse_s, 0) << ")\n";
+  if (!result.merged.empty()) {
+    std::cout << "  merged map: " << result.merged.width() << " x " << result.merged.height() << " cells, "
+              << result.double_walls.wall_cells << " wall cells, " << result.double_walls.doubled_cells << " doubled ("
+              << format_fixed(100.0 * result.double_walls.share(), 1) << " %: a parallel wall "
+              << format_fixed(merge_params.double_walls.min_gap_m, 2) << "-" << format_fixed(merge_params.double_walls.max_gap_m, 2)
+              << " m away across free space)\n";
+    constexpr double doubled_hint_share = 0.05;  // one wall in twenty doubled: plain to see, worth bending
+    if (!merge_params.non_rigid && result.double_walls.share() >= doubled_hint_share) {
+      std::cout << "  doubled walls: the maps bend against each other; --non-rigid bends each onto the reference\n";
+    }
+  }
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    const auto& m = result.maps[i];
+    if (!m.placed) continue;
+    const auto& T = m.T_reference_map;
+    std::cout << "  " << paths[i] << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2) << " deg, translation ("
+              << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3) << ") m"
+              << (T.reflected ? ", reflected" : "") << ", residual " << format_fixed(m.residual_m, 3) << " m";
+    if (drawn) std::cout << ", drawn in " << hex_color(areamatch::map_color(static_cast<int>(i)));
+    if (m.warp) {
+      std::cout << "; warp: walls " << format_fixed(m.warp->rigid_median_m, 3) << " -> " << format_fixed(m.warp->warped_median_m, 3)
+                << " m median off the reference's, moved up to " << format_fixed(m.warp->max_displacement_m, 2) << " m";
+    }
+    std::cout << "\n";
+  }
+  for (const auto& e : result.edges) {
+    if (e.match.ok && !e.used) std::cout << "  dropped " << paths[e.source] << " -> " << paths[e.dest] << ": " << e.note << "\n";
+  }
+}
+
+int run_merge(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "non-rigid", "help"},
+                  {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
+                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads", "control-spacing", "bend-length"});
+  if (args.flag("help")) {
+    std::cout << kMergeHelp;
+    return 0;
+  }
+  make_output_folders(args, {"out", "png"});
+  const std::vector<std::string>& paths = args.positional();
+  if (paths.size() < 2) throw UsageError("expected at least two maps: MAP MAP...");
+  namespace fs = std::filesystem;
+  auto same_file = [](const std::string& a, const std::string& b) {
+    std::error_code error;
+    return fs::equivalent(a, b, error) || fs::weakly_canonical(a, error) == fs::weakly_canonical(b, error);
+  };
+  for (std::size_t i = 0; i < paths.size(); ++i) {
+    for (std::size_t j = 0; j < i; ++j) {
+      if (same_file(paths[i], paths[j])) throw UsageError("map '" + paths[i] + "' is given twice (as '" + paths[j] + "')");
+    }
+  }
+  const areamatch::MergeParams merge_params = merge_params_from(args, paths, same_file);
   // The matcher's options as `areamatch match` sets them (its threads stay 1: merging spreads pairs).
   areamatch::MapPairOptions match_options;
   match_options.allow_reflection = args.flag("allow-reflection");
@@ -1129,43 +1178,7 @@ int run_merge(const std::vector<std::string>& tokens) {
                                                               {"total_s", total_s}})
               << "\n";
   } else {
-    std::size_t placed = 0, used = 0, accepted = 0;
-    for (const auto& m : result.maps) placed += m.placed;
-    for (const auto& e : result.edges) used += e.used, accepted += e.match.ok;
-    std::cout << "placed " << placed << " of " << paths.size() << " maps in the frame of " << paths[result.reference] << " ("
-              << result.edges.size() << " matches, " << accepted << " accepted, " << used << " used), "
-              << format_fixed(1000.0 * total_s, 0) << " ms (prepare " << format_fixed(1000.0 * seconds(loaded, prepared), 0)
-              << ", match " << format_fixed(1000.0 * result.timings.matching_s, 0)
-              << (merge_params.non_rigid ? ", warp " + format_fixed(1000.0 * result.timings.warp_s, 0) : std::string()) << ", fuse "
-              << format_fixed(1000.0 * result.timings.fuse_s, 0) << ")\n";
-    if (!result.merged.empty()) {
-      std::cout << "  merged map: " << result.merged.width() << " x " << result.merged.height() << " cells, "
-                << result.double_walls.wall_cells << " wall cells, " << result.double_walls.doubled_cells << " doubled ("
-                << format_fixed(100.0 * result.double_walls.share(), 1) << " %: a parallel wall "
-                << format_fixed(merge_params.double_walls.min_gap_m, 2) << "-" << format_fixed(merge_params.double_walls.max_gap_m, 2)
-                << " m away across free space)\n";
-      constexpr double doubled_hint_share = 0.05;  // one wall in twenty doubled: plain to see, worth bending
-      if (!merge_params.non_rigid && result.double_walls.share() >= doubled_hint_share) {
-        std::cout << "  doubled walls: the maps bend against each other; --non-rigid bends each onto the reference\n";
-      }
-    }
-    for (std::size_t i = 0; i < paths.size(); ++i) {
-      const auto& m = result.maps[i];
-      if (!m.placed) continue;
-      const auto& T = m.T_reference_map;
-      std::cout << "  " << paths[i] << ": rotation " << format_fixed(T.rotation * 180.0 / areamatch::pi, 2) << " deg, translation ("
-                << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3) << ") m"
-                << (T.reflected ? ", reflected" : "") << ", residual " << format_fixed(m.residual_m, 3) << " m";
-      if (args.text("png")) std::cout << ", drawn in " << hex_color(areamatch::map_color(static_cast<int>(i)));
-      if (m.warp) {
-        std::cout << "; warp: walls " << format_fixed(m.warp->rigid_median_m, 3) << " -> " << format_fixed(m.warp->warped_median_m, 3)
-                  << " m median off the reference's, moved up to " << format_fixed(m.warp->max_displacement_m, 2) << " m";
-      }
-      std::cout << "\n";
-    }
-    for (const auto& e : result.edges) {
-      if (e.match.ok && !e.used) std::cout << "  dropped " << paths[e.source] << " -> " << paths[e.dest] << ": " << e.note << "\n";
-    }
+    print_merge_summary(result, paths, merge_params, args.text("png").has_value(), total_s, seconds(loaded, prepared));
   }
   for (std::size_t i = 0; i < paths.size(); ++i) {
     if (!result.maps[i].placed) std::cerr << "areamatch merge: " << paths[i] << " not placed: " << result.maps[i].reason << "\n";
@@ -1352,6 +1365,93 @@ const char* kCalibrateHelp =
     "  --choose-on all|real  the rows --choose-rule chooses on: every row, generated ones too\n"
     "                     (default), or real buildings' alone; judged on real buildings either way\n";
 
+/// `calibrate --choose-rule`: the rule chosen on the rows' cross-validated predictions, and that choice
+/// judged by nested leave-one-building-out cross-validation.
+void report_chosen_rule(const Args& args, const std::vector<CalibrationRow>& rows, const std::vector<std::string>& buildings,
+                        const areamatch_cli::JudgingBuildings& judging, const areamatch_cli::MapRoles& roles,
+                        const std::vector<double>& predicted, double l2, const areamatch::DecisionParams& base,
+                        double gate_overlap) {
+  const auto line = areamatch_cli::counts_line;
+  const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
+  if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
+  // Chosen on every row (or, --choose-on real, on real buildings' alone); judged on real ones.
+  const std::string choose_on = args.text("choose-on").value_or("all");
+  if (choose_on != "real" && choose_on != "all") throw UsageError("--choose-on must be real or all, got '" + choose_on + "'");
+  const bool choose_on_all = choose_on == "all";
+  std::vector<std::size_t> judged_rows;
+  std::vector<double> judged_predicted;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!choose_on_all && !judging.judged(i)) continue;
+    judged_rows.push_back(i);
+    judged_predicted.push_back(predicted[i]);
+  }
+  const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept, gate_overlap);
+  std::vector<Rule> chosen;
+  std::vector<signed char> accepted;
+  try {
+    accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, gate_overlap, chosen);
+  } catch (const areamatch::parameter_error& e) {
+    throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
+                     e.what() + "); nested cross-validation needs more buildings with right answers");
+  }
+  DecisionCounts nested_total;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (accepted[i] >= 0) nested_total.add(rows[i].sample.correct, rows[i].different_buildings, accepted[i] > 0);
+  }
+  std::map<std::array<double, 4>, int> folds;
+  for (const Rule& fold_rule : chosen) {
+    ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.min_overlap_m2, fold_rule.accept_p}];
+  }
+  std::cout << "\nrule chosen on all rows (at most " << format_double(max_false_accept)
+            << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
+            << format_double(shipped.min_agreement) << " with lower wall agreement <= "
+            << format_double(shipped.max_lower_walls) << " on at least " << format_fixed(shipped.min_overlap_m2, 0)
+            << " m2 shared, or p_correct >= " << format_double(shipped.accept_p)
+            << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
+  for (const auto& [thresholds, n] : folds) {
+    std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1])
+              << ", overlap " << format_fixed(thresholds[2], 0) << ", p " << format_double(thresholds[3]) << "] x" << n;
+  }
+  std::cout << "\n\n"
+            << areamatch_cli::judged_report(rows, accepted, buildings, judging, roles,
+                                            "nested leave-one-building-out (model and thresholds chosen without the building)")
+            << line("total (nested cross-validation)", nested_total);
+}
+
+/// `calibrate`'s reliability tables (cross-validated): all rows, then the real buildings' alone (what
+/// --svg draws).
+void report_reliability(const Args& args, const std::vector<CalibrationRow>& rows, const std::vector<double>& predicted,
+                        const areamatch_cli::JudgingBuildings& judging) {
+  std::cout << "\nreliability (cross-validated): bin | rows | mean predicted | observed right | observed right, "
+               "classes weighted equally (the fit's prior)\n";
+  constexpr int bins = 10;
+  auto print_table = [&](const std::vector<ReliabilityBin>& table) {
+    for (int b = 0; b < bins; ++b) {
+      const ReliabilityBin& r = table[static_cast<std::size_t>(b)];
+      std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << r.rows
+                << " | " << (r.rows ? format_fixed(r.mean_predicted, 3) : "-") << " | "
+                << (r.rows ? format_fixed(r.observed, 3) : "-") << " | "
+                << (r.rows ? format_fixed(r.observed_balanced, 3) : "-") << "\n";
+    }
+  };
+  const std::vector<ReliabilityBin> table = reliability(predicted, rows, bins);
+  print_table(table);
+  // The real buildings' rows alone: what a user's maps meet.
+  std::vector<CalibrationRow> real_rows;
+  std::vector<double> real_predicted;
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    if (!judging.judged(i)) continue;
+    real_rows.push_back(rows[i]);
+    real_predicted.push_back(predicted[i]);
+  }
+  const std::vector<ReliabilityBin> real_table = reliability(real_predicted, real_rows, bins);
+  if (!judging.all_judge) {
+    std::cout << "\nreliability of the real buildings' rows alone (cross-validated; --svg draws this one):\n";
+    print_table(real_table);
+  }
+  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(real_table));
+}
+
 int run_calibrate(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "svg", "predictions", "max-false-accept", "choose-on"});
   if (args.flag("help")) {
@@ -1424,34 +1524,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   for (std::size_t i = 0; i < areamatch::DecisionFeatures::size; ++i) {
     std::cout << (i ? ", " : "") << areamatch::DecisionFeatures::names[i];
   }
-  std::cout << ")\n\nreliability (cross-validated): bin | rows | mean predicted | observed right | observed right, "
-               "classes weighted equally (the fit's prior)\n";
-  constexpr int bins = 10;
-  auto print_table = [&](const std::vector<ReliabilityBin>& table) {
-    for (int b = 0; b < bins; ++b) {
-      const ReliabilityBin& r = table[static_cast<std::size_t>(b)];
-      std::cout << format_fixed(b / double(bins), 1) << "-" << format_fixed((b + 1) / double(bins), 1) << " | " << r.rows
-                << " | " << (r.rows ? format_fixed(r.mean_predicted, 3) : "-") << " | "
-                << (r.rows ? format_fixed(r.observed, 3) : "-") << " | "
-                << (r.rows ? format_fixed(r.observed_balanced, 3) : "-") << "\n";
-    }
-  };
-  const std::vector<ReliabilityBin> table = reliability(predicted, rows, bins);
-  print_table(table);
-  // The real buildings' rows alone: what a user's maps meet.
-  std::vector<CalibrationRow> real_rows;
-  std::vector<double> real_predicted;
-  for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (!judging.judged(i)) continue;
-    real_rows.push_back(rows[i]);
-    real_predicted.push_back(predicted[i]);
-  }
-  const std::vector<ReliabilityBin> real_table = reliability(real_predicted, real_rows, bins);
-  if (!judging.all_judge) {
-    std::cout << "\nreliability of the real buildings' rows alone (cross-validated; --svg draws this one):\n";
-    print_table(real_table);
-  }
-  if (const auto svg = args.text("svg")) areamatch::write_text_file(*svg, reliability_svg(real_table));
+  std::cout << ")\n";
+  report_reliability(args, rows, predicted, judging);
   if (const auto out = args.text("predictions")) {
     areamatch::write_text_file(*out, predictions_csv(rows, buildings, predicted, in_sample, rule));
   }
@@ -1460,52 +1534,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
       if (args.text(name)) throw UsageError(std::string("--") + name + " needs --choose-rule");
     }
   }
-  if (args.flag("choose-rule")) {
-    const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
-    if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
-    // Chosen on every row (or, --choose-on real, on real buildings' alone); judged on real ones.
-    const std::string choose_on = args.text("choose-on").value_or("all");
-    if (choose_on != "real" && choose_on != "all") throw UsageError("--choose-on must be real or all, got '" + choose_on + "'");
-    const bool choose_on_all = choose_on == "all";
-    std::vector<std::size_t> judged_rows;
-    std::vector<double> judged_predicted;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (!choose_on_all && !judging.judged(i)) continue;
-      judged_rows.push_back(i);
-      judged_predicted.push_back(predicted[i]);
-    }
-    const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept, gate_overlap);
-    std::vector<Rule> chosen;
-    std::vector<signed char> accepted;
-    try {
-      accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, gate_overlap, chosen);
-    } catch (const areamatch::parameter_error& e) {
-      throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
-                       e.what() + "); nested cross-validation needs more buildings with right answers");
-    }
-    DecisionCounts nested_total;
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      if (accepted[i] >= 0) nested_total.add(rows[i].sample.correct, rows[i].different_buildings, accepted[i] > 0);
-    }
-    std::map<std::array<double, 4>, int> folds;
-    for (const Rule& fold_rule : chosen) {
-      ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.min_overlap_m2, fold_rule.accept_p}];
-    }
-    std::cout << "\nrule chosen on all rows (at most " << format_double(max_false_accept)
-              << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
-              << format_double(shipped.min_agreement) << " with lower wall agreement <= "
-              << format_double(shipped.max_lower_walls) << " on at least " << format_fixed(shipped.min_overlap_m2, 0)
-              << " m2 shared, or p_correct >= " << format_double(shipped.accept_p)
-              << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
-    for (const auto& [thresholds, n] : folds) {
-      std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1])
-                << ", overlap " << format_fixed(thresholds[2], 0) << ", p " << format_double(thresholds[3]) << "] x" << n;
-    }
-    std::cout << "\n\n"
-              << areamatch_cli::judged_report(rows, accepted, buildings, judging, roles,
-                                              "nested leave-one-building-out (model and thresholds chosen without the building)")
-              << line("total (nested cross-validation)", nested_total);
-  }
+  if (args.flag("choose-rule")) report_chosen_rule(args, rows, buildings, judging, roles, predicted, l2, base, gate_overlap);
   return 0;
 }
 

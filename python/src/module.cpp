@@ -324,19 +324,8 @@ void translate_exceptions() {
   });
 }
 
-}  // namespace
-
-PYBIND11_MODULE(_core, m) {
-
-  m.doc() = "areamatch: align 2D occupancy-grid maps of one building and say which room is which";
-  m.attr("__version__") = am::version_string;
-  m.attr("DEFAULT_THREADS") = am::default_program_threads;  // as the `areamatch` program
-  m.attr("FREE") = static_cast<int>(am::CellState::free);
-  m.attr("OCCUPIED") = static_cast<int>(am::CellState::occupied);
-  m.attr("UNKNOWN") = static_cast<int>(am::CellState::unknown);
-  translate_exceptions();
-
-  // ------------------------------------------------------------------------------------ Map
+/// Map: an occupancy grid with its frame; load, save, pictures.
+void bind_map(py::module_& m) {
   py::class_<am::OccupancyGrid>(m, "Map", "An occupancy grid with its metric frame (ROS map_server conventions).")
       .def_static(
           "from_array",
@@ -413,7 +402,10 @@ PYBIND11_MODULE(_core, m) {
       "Loads a ROS map_server YAML or a bare PNG/PGM (a str or a path-like object; then 0.05 m per pixel and "
       "map_server's thresholds unless given). Keywords override what the YAML says.");
 
-  // ------------------------------------------------------------------------------ AreaGraph
+}
+
+/// Passage, Area, AreaGraph and segment().
+void bind_area_graph(py::module_& m) {
   py::class_<am::Passage>(m, "Passage", "An opening (door or junction) between two areas, metres.")
       .def_readonly("id", &am::Passage::id)
       .def_property_readonly("kind", [](const am::Passage& p) { return std::string(am::to_string(p.kind)); })
@@ -472,7 +464,10 @@ PYBIND11_MODULE(_core, m) {
       py::arg("map"), py::arg("door_width") = py::none(), release_gil(),
       "The map's Area Graph (door_width in metres: openings narrower than it are doors; default 1.2).");
 
-  // ---------------------------------------------------------------------------------- Match
+}
+
+/// Result, Picture and match().
+void bind_match(py::module_& m) {
   py::class_<MatchRun>(m, "Result", "A match of a source map onto a destination map.")
       .def_property_readonly("ok", [](const MatchRun& r) { return r.run.result.ok; })
       .def_property_readonly("reason", [](const MatchRun& r) { return r.run.result.reason; })
@@ -549,13 +544,10 @@ PYBIND11_MODULE(_core, m) {
       "progress: called with (stage, done, total) at the start of each stage ('load', 'segment', 'prepare', "
       "'select', 'check'; 'scale' per candidate scale); an exception it raises stops the match and is raised here.");
 
-  // ------------------------------------------------------------------ Prepared maps, merging
-  py::class_<Prepared>(m, "PreparedMap", "A map segmented and made ready for any number of matches (Matcher.prepare).")
-      .def_property_readonly("map", &Prepared::grid)
-      .def_property_readonly("graph", &Prepared::graph);
+}
 
-  // Declared before Matcher so that Matcher.merge's signature names it (not the C++ type).
-  py::class_<MergeRun> merge_result(m, "MergeResult", "Several maps placed in one frame, with the merged map.");
+/// Matcher: prepare, match, merge.
+void bind_matcher(py::module_& m) {
   py::class_<PyMatcher>(m, "Matcher", "The default matcher with options, for prepared maps and merging.")
       .def(py::init([](std::optional<double> door_width, bool allow_reflection, std::optional<std::size_t> k,
                        std::optional<double> min_score, std::optional<double> min_agreement,
@@ -606,6 +598,10 @@ PYBIND11_MODULE(_core, m) {
           py::arg("non_rigid") = false, py::arg("control_spacing") = py::none(), py::arg("bend_length") = py::none(),
           release_gil(), "Places prepared maps in the frame of maps[reference] and fuses them (as `areamatch merge`).");
 
+}
+
+/// MergeResult's members (the class is declared before Matcher, whose merge returns it).
+void bind_merge_result(py::class_<MergeRun>& merge_result) {
   merge_result.def_property_readonly("ok", [](const MergeRun& r) { return r.result.ok; }, "every map placed")
       .def_property_readonly("reference", [](const MergeRun& r) { return r.result.reference; })
       .def_property_readonly("maps",
@@ -662,7 +658,10 @@ PYBIND11_MODULE(_core, m) {
         return text + ">";
       });
 
-  // -------------------------------------------------------------------------------- Assess
+}
+
+/// Assessment and assess().
+void bind_assess(py::module_& m) {
   py::class_<AssessRun>(m, "Assessment", "A map assessed against a reference (docs/assessment.md).")
       .def_property_readonly("ok", [](const AssessRun& a) { return a.assessment.ok; })
       .def_property_readonly("reason", [](const AssessRun& a) { return a.assessment.reason; })
@@ -728,7 +727,10 @@ PYBIND11_MODULE(_core, m) {
       "displacement, broken pieces, coverage, topology. A map that cannot be placed gives ok False with the reason, unless "
       "same_building.");
 
-  // ------------------------------------------------------------------------------ Synthetic
+}
+
+/// The _synthetic submodule (areamatch.synthetic).
+void bind_synthetic(py::module_& m) {
   auto synthetic = m.def_submodule("_synthetic", "synthetic buildings and robot maps (areamatch.synthetic)");
   py::class_<am::SyntheticBuilding>(synthetic, "SyntheticBuilding", "A generated floor: its layout map and rooms.")
       .def_readonly("layout", &am::SyntheticBuilding::layout)
@@ -785,4 +787,31 @@ PYBIND11_MODULE(_core, m) {
       py::arg("resolution") = py::none(), py::arg("handheld") = false, release_gil(),
       "A robot map of `building` turned, shifted (and mirrored), exploring a share of its rooms; handheld=True: "
       "the hand-held scan style (RobotMapParams::handheld, the other noise keywords ignored).");
+}
+
+}  // namespace
+
+PYBIND11_MODULE(_core, m) {
+
+  m.doc() = "areamatch: align 2D occupancy-grid maps of one building and say which room is which";
+  m.attr("__version__") = am::version_string;
+  m.attr("DEFAULT_THREADS") = am::default_program_threads;  // as the `areamatch` program
+  m.attr("FREE") = static_cast<int>(am::CellState::free);
+  m.attr("OCCUPIED") = static_cast<int>(am::CellState::occupied);
+  m.attr("UNKNOWN") = static_cast<int>(am::CellState::unknown);
+  translate_exceptions();
+
+  bind_map(m);
+  bind_area_graph(m);
+  bind_match(m);
+  py::class_<Prepared>(m, "PreparedMap", "A map segmented and made ready for any number of matches (Matcher.prepare).")
+      .def_property_readonly("map", &Prepared::grid)
+      .def_property_readonly("graph", &Prepared::graph);
+
+  // Declared before Matcher so that Matcher.merge's signature names it (not the C++ type).
+  py::class_<MergeRun> merge_result(m, "MergeResult", "Several maps placed in one frame, with the merged map.");
+  bind_matcher(m);
+  bind_merge_result(merge_result);
+  bind_assess(m);
+  bind_synthetic(m);
 }
