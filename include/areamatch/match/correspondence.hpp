@@ -31,8 +31,9 @@ namespace areamatch {
 
 struct CorrespondenceParams {
   /// The local ICP: short gates (metres), so that a room moves to its own walls and not to the
-  /// next room's. The global ICP starts at 2 m.
-  RefineParams local{{1.0, 0.6, 0.3}, 6, 0.8, 0.1, 600, 0.1};
+  /// next room's (the global ICP starts at 2 m); more steps per gate on fewer points, as a room
+  /// has few walls.
+  RefineParams local = local_refinement();
   /// Areas with fewer wall points than this keep the global transform (too little to fit).
   std::size_t min_wall_points = 30;
   /// Pairs overlapping less than this (area of the overlap / the smaller area) are not reported.
@@ -44,6 +45,17 @@ struct CorrespondenceParams {
   /// per room; more means ICP slid a small or featureless area somewhere else.
   double max_rotation_rad = 5.0 * pi / 180.0;
   double max_shift_m = 1.0;
+
+  static RefineParams local_refinement() {
+    RefineParams r;
+    r.gates_m = {1.0, 0.6, 0.3};
+    r.iterations_per_gate = 6;
+    r.keep_fraction = 0.8;
+    r.point_spacing_m = 0.1;
+    r.max_points = 600;
+    r.lookup_cell_m = 0.1;
+    return r;
+  }
 
   void validate() const {
     local.validate();

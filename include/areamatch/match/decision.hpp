@@ -24,6 +24,12 @@
 ///                            entered — fall on each other too (two alike buildings agree in
 ///                            their shared part, not there)
 ///
+/// Two weights are fitted negative: walls_worst and log_overlap. They are conditional effects
+/// beside the signals they move with (walls_worst with walls_best, log_overlap with the margins
+/// and free_iou), not a claim that agreeing walls or more shared space count against an answer:
+/// both wall agreements rising together still raise p_correct (tests/test_decision.cpp pins the
+/// signs, so a refit that flips one is looked at).
+///
 /// The coefficients are fitted by `fit_decision` (L2-regularised logistic regression, both classes
 /// weighted equally) and chosen by leave-one-building-out cross-validation over every real
 /// building we have plus synthetic ones (`areamatch calibrate`, docs/evaluation.md). Fitting your
@@ -39,6 +45,8 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <string>
+#include <string_view>
 #include <vector>
 
 namespace areamatch {
@@ -50,6 +58,16 @@ struct DecisionFeatures {
   static constexpr std::array<const char*, size> names = {"walls_best",  "walls_worst", "rooms",
                                                           "margin",      "log_margin",  "log_overlap",
                                                           "turn_margin", "free_iou",    "occupied_walls"};
+  /// The position of signal `name` in `values`; throws `parameter_error` for a name not in `names`.
+  static std::size_t index(std::string_view name) {
+    for (std::size_t i = 0; i < size; ++i) {
+      if (name == names[i]) return i;
+    }
+    throw parameter_error("DecisionFeatures: no signal named '" + std::string(name) + "'");
+  }
+  /// Signal `name`'s value, by name (positions shift when a signal is added; names do not).
+  double& operator[](std::string_view name) { return values[index(name)]; }
+  double operator[](std::string_view name) const { return values[index(name)]; }
 };
 
 /// A logistic model p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) and the acceptance rule:
@@ -118,15 +136,15 @@ inline DecisionFeatures decision_features(const MatchResult& r) {
   const double margin = unit(r.confidence);
   // Not measured (the turn check needs the refinement): no sign that the answer stands out.
   const double turn_margin = std::isfinite(e.turn_margin) ? std::clamp(e.turn_margin, -1.0, 1.0) : 0.0;
-  f.values = {unit(std::max(e.forward_wall_agreement, e.reverse_wall_agreement)),
-              lower_wall_agreement(e),
-              unit(e.room_agreement),
-              margin,
-              std::log10(margin + 0.01),
-              std::log10(std::max(1.0, std::isfinite(e.overlap_m2) ? e.overlap_m2 : 1.0)),
-              turn_margin,
-              unit(e.free_iou),
-              unit(e.occupied_wall_agreement)};
+  f["walls_best"] = unit(std::max(e.forward_wall_agreement, e.reverse_wall_agreement));
+  f["walls_worst"] = lower_wall_agreement(e);
+  f["rooms"] = unit(e.room_agreement);
+  f["margin"] = margin;
+  f["log_margin"] = std::log10(margin + 0.01);
+  f["log_overlap"] = std::log10(std::max(1.0, std::isfinite(e.overlap_m2) ? e.overlap_m2 : 1.0));
+  f["turn_margin"] = turn_margin;
+  f["free_iou"] = unit(e.free_iou);
+  f["occupied_walls"] = unit(e.occupied_wall_agreement);
   return f;
 }
 
