@@ -8,8 +8,8 @@
         print(result.T_dest_source)          # 3x3, robot world -> layout world (metres)
 
 Everything is computed by the C++ library (areamatch._core); the GIL is released while maps are
-loaded, segmented, matched and merged. Bad input raises ValueError (parameters, file content) or
-OSError (files). See docs/python.md.
+loaded, segmented, matched and merged. Every library error is an areamatch.Error (and, as before,
+a ValueError for parameters and file content, an OSError for files). See docs/python.md.
 """
 
 from ._core import (  # noqa: F401
@@ -34,6 +34,7 @@ from ._core import (  # noqa: F401
     segment,
 )
 from . import ros, synthetic  # noqa: F401
+from .errors import Error, FormatError, InternalError, IoError, LimitError, ParameterError  # noqa: F401
 
 import inspect as _inspect
 

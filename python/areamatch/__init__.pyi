@@ -1,6 +1,8 @@
 from typing import Any, Dict, List, Optional, Sequence
 
 from . import ros as ros, synthetic as synthetic
+from .errors import (Error as Error, FormatError as FormatError, InternalError as InternalError, IoError as IoError,
+                     LimitError as LimitError, ParameterError as ParameterError)
 from ._core import (DEFAULT_THREADS as DEFAULT_THREADS, FREE as FREE, OCCUPIED as OCCUPIED, UNKNOWN as UNKNOWN, Area as Area, AreaGraph as AreaGraph,
                     Assessment as Assessment, Map as Map, Matcher as Matcher, MergeResult as MergeResult, Passage as Passage, Picture as Picture,
                     PreparedMap as PreparedMap, Result as Result, __version__ as __version__, assess as assess, load_map as load_map,

@@ -306,20 +306,28 @@ py::dict merged_map_dict(const am::MergedMap& m) {
   return d;
 }
 
+/// Library exceptions as areamatch.errors' classes (python/areamatch/errors.py: one base,
+/// areamatch.Error, each class also a ValueError, OSError or RuntimeError as before). The module
+/// is looked up when an error is raised (a dictionary lookup once imported), not held in a static.
+void set_library_error(const char* name, const char* message) {
+  const py::object type = py::module_::import("areamatch.errors").attr(name);
+  PyErr_SetString(type.ptr(), message);
+}
+
 void translate_exceptions() {
   py::register_exception_translator([](std::exception_ptr p) {
     try {
       if (p) std::rethrow_exception(p);
     } catch (const am::format_error& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      set_library_error("FormatError", e.what());
     } catch (const am::io_error& e) {
-      PyErr_SetString(PyExc_OSError, e.what());
+      set_library_error("IoError", e.what());
     } catch (const am::parameter_error& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      set_library_error("ParameterError", e.what());
     } catch (const am::limit_error& e) {
-      PyErr_SetString(PyExc_ValueError, e.what());
+      set_library_error("LimitError", e.what());
     } catch (const am::error& e) {
-      PyErr_SetString(PyExc_RuntimeError, e.what());
+      set_library_error("InternalError", e.what());
     }
   });
 }

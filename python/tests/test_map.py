@@ -106,6 +106,23 @@ def test_load_errors(tmp_path):
     assert areamatch.load_map(str(tmp_path / "ok.pgm"), resolution=0.1).resolution == 0.1
 
 
+def test_one_error_base(tmp_path):
+    # Every library error is an areamatch.Error of its own kind, and still the built-in it was.
+    with pytest.raises(areamatch.IoError) as missing:
+        areamatch.load_map(str(tmp_path / "missing.yaml"))
+    assert isinstance(missing.value, areamatch.Error) and isinstance(missing.value, OSError)
+    corrupt = tmp_path / "corrupt.png"
+    corrupt.write_bytes(b"\x89PNG\r\n\x1a\n not really")
+    with pytest.raises(areamatch.FormatError) as bad_file:
+        areamatch.load_map(str(corrupt))
+    assert isinstance(bad_file.value, areamatch.Error) and isinstance(bad_file.value, ValueError)
+    with pytest.raises(areamatch.ParameterError, match="resolution") as bad_parameter:
+        Map.from_array(np.zeros((3, 3), np.uint8), -1.0)
+    assert isinstance(bad_parameter.value, ValueError)
+    for name in ("Error", "ParameterError", "FormatError", "LimitError", "IoError", "InternalError"):
+        assert issubclass(getattr(areamatch, name), areamatch.Error)
+
+
 def test_paths_and_maps(tmp_path):
     # load_map takes a pathlib.Path as well as a str; match, segment and assess take Maps, and a
     # path passed to them says how to load it.
