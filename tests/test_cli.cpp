@@ -2,7 +2,9 @@
 // message for bad input.
 #include <doctest/doctest.h>
 
+#include <areamatch/detail/format.hpp>
 #include <areamatch/io.hpp>
+#include <areamatch/match/params.hpp>
 
 #include "test_support.hpp"
 
@@ -54,6 +56,24 @@ TEST_CASE("help and version") {
   const Run unknown = run("frobnicate");
   CHECK(unknown.status == 2);
   CHECK(unknown.out.find("unknown command 'frobnicate'") != std::string::npos);
+}
+
+TEST_CASE("help texts print the library's own defaults of the decision options") {
+  const areamatch::MatcherParams defaults;
+  using areamatch::detail::format_double;
+  const std::string agreement = "(default " + format_double(defaults.min_agreement);
+  const std::string walls = "(default " + format_double(defaults.gate_max_lower_walls) + ";";
+  const std::string overlap = "(default " + areamatch::detail::format_fixed(defaults.gate_min_overlap_m2, 0) + ";";
+  for (const char* command : {"match", "warp", "assess", "merge", "eval", "calibrate"}) {
+    const std::string help = run(std::string(command) + " --help").out;
+    INFO(command);
+    CHECK(help.find(agreement) != std::string::npos);
+    CHECK(help.find(walls) != std::string::npos);
+    CHECK(help.find(overlap) != std::string::npos);
+    CHECK(help.find("{min_agreement}") == std::string::npos);
+  }
+  CHECK(run("calibrate --help").out.find("(default " + format_double(defaults.decision.accept_p_correct) + ")") !=
+        std::string::npos);
 }
 
 TEST_CASE("generate writes a pair that info reads back") {

@@ -581,7 +581,27 @@ int run_segment(const std::vector<std::string>& tokens) {
 // The help texts below say "--threads N ... (default 2"; keep them with the constant.
 static_assert(areamatch::default_program_threads == 2, "update the help texts' --threads default");
 
-const char* kPairOptionsHelp =
+/// A help text with the decision options' defaults filled in from the library's own
+/// (`MatcherParams{}`), so that the program cannot print another default than the one it uses:
+/// {min_agreement}, {gate_max_lower_walls}, {gate_min_overlap_m2}, {accept_p_correct}.
+std::string with_decision_defaults(std::string text) {
+  const areamatch::MatcherParams defaults;
+  // Whole numbers as such (format_double's shortest form of 100 is 1e+02).
+  auto plain = [](double v) { return v == std::floor(v) && std::abs(v) < 1e9 ? format_fixed(v, 0) : format_double(v); };
+  const std::pair<std::string, std::string> values[] = {
+      {"{min_agreement}", plain(defaults.min_agreement)},
+      {"{gate_max_lower_walls}", plain(defaults.gate_max_lower_walls)},
+      {"{gate_min_overlap_m2}", plain(defaults.gate_min_overlap_m2)},
+      {"{accept_p_correct}", plain(defaults.decision.accept_p_correct)}};
+  for (const auto& [key, value] : values) {
+    for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size())) {
+      text.replace(at, key.size(), value);
+    }
+  }
+  return text;
+}
+
+const std::string kPairOptionsHelp = with_decision_defaults(
     "  --source-resolution R   metres per pixel of SOURCE (default: its YAML, else 0.05)\n"
     "  --dest-resolution R     metres per pixel of DEST (default: its YAML, else 0.05)\n"
     "  --door-width M          door width for both maps, metres (default 1.2, see segment --help)\n"
@@ -596,15 +616,15 @@ const char* kPairOptionsHelp =
     "                          (default 0: off; see docs/evaluation.md)\n"
     "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
     "  --min-agreement A       reject when the maps agree less than A under the best transform and the\n"
-    "                          model is not sure (default 0.835; 0 with --gate-max-lower-walls 2 and --gate-min-overlap 0\n"
+    "                          model is not sure (default {min_agreement}; 0 with --gate-max-lower-walls 2 and --gate-min-overlap 0\n"
     "                          always answers;\n"
     "                          see docs/evaluation.md)\n"
     "  --gate-max-lower-walls W  at or above --min-agreement, accept on the agreement alone only where the\n"
-    "                          lower of the two wall agreements is at most W (default 0.7; above 1: always)\n"
-    "  --gate-min-overlap M2   ... and the maps share at least M2 square metres of free space (default 100;\n"
+    "                          lower of the two wall agreements is at most W (default {gate_max_lower_walls}; above 1: always)\n"
+    "  --gate-min-overlap M2   ... and the maps share at least M2 square metres of free space (default {gate_min_overlap_m2};\n"
     "                          0: whatever the overlap)\n"
     "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
-    "                          per core); the same result for any N\n";
+    "                          per core); the same result for any N\n");
 
 const std::set<std::string> kPairFlags = {"allow-reflection", "paper", "estimate-scale", "help"};
 const std::set<std::string> kPairOptions = {"source-resolution", "dest-resolution", "door-width", "source-door-width",
@@ -993,7 +1013,7 @@ int run_assess(const std::vector<std::string>& tokens) {
 
 // --------------------------------------------------------------------------------------- merge
 
-const char* kMergeHelp =
+const std::string kMergeHelp = with_decision_defaults(
     "usage: areamatch merge MAP MAP... [options]\n"
     "Places several maps of one building (robot maps, scans, a floor plan) in one frame: every pair is\n"
     "matched, the accepted matches are fitted together (least squares, so loops of matches agree), a\n"
@@ -1022,12 +1042,12 @@ const char* kMergeHelp =
     "  --control-spacing M  with --non-rigid: the warps' control grid spacing, metres (default 1)\n"
     "  --bend-length M      with --non-rigid: the shortest bend a warp follows, metres (default 4)\n"
     "  --threads N          match N pairs at once (default 2; 0: one per core); same results for any N\n"
-    "  --min-agreement A    accept a match when the maps agree at least A (default 0.835) ...\n"
-    "  --gate-max-lower-walls W  ... and the lower of the two wall agreements is at most W (default 0.7;\n"
+    "  --min-agreement A    accept a match when the maps agree at least A (default {min_agreement}) ...\n"
+    "  --gate-max-lower-walls W  ... and the lower of the two wall agreements is at most W (default {gate_max_lower_walls};\n"
     "                       above 1: whatever the walls)\n"
-    "  --gate-min-overlap M2  ... and the maps share at least M2 m² of free space (default 100; 0: any)\n"
+    "  --gate-min-overlap M2  ... and the maps share at least M2 m² of free space (default {gate_min_overlap_m2}; 0: any)\n"
     "  --min-p-correct P    reject a match below this probability of being right (default 0: off)\n"
-    "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n";
+    "Every map is read as by `areamatch info` (a bare image at 0.05 m per pixel).\n");
 
 /// "#rrggbb", as a picture's colour is named in text.
 std::string hex_color(const areamatch::Rgb& c) {
@@ -1188,7 +1208,7 @@ int run_merge(const std::vector<std::string>& tokens) {
 
 // ---------------------------------------------------------------------------------------- eval
 
-const char* kEvalHelp =
+const std::string kEvalHelp = with_decision_defaults(
     "usage: areamatch eval MANIFEST [options]\n"
     "Matches every pair of a manifest (the format of shared/pairs.json; paths relative to it) and prints\n"
     "a table: areas, segmentation/matching/total times, the transform, and with ground truth the\n"
@@ -1205,10 +1225,10 @@ const char* kEvalHelp =
     "  --k N              mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-p-correct P  reject when the calibrated probability of a right answer is below P (default 0: off)\n"
     "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
-    "  --min-agreement A  reject when the maps agree less than A under the best transform (default 0.835)\n"
+    "  --min-agreement A  reject when the maps agree less than A under the best transform (default {min_agreement})\n"
     "  --gate-max-lower-walls W  at or above A, accept on the agreement alone only where the lower wall\n"
-    "                     agreement is at most W (default 0.7; above 1: always)\n"
-    "  --gate-min-overlap M2  ... and the maps share at least M2 m² of free space (default 100; 0: any)\n"
+    "                     agreement is at most W (default {gate_max_lower_walls}; above 1: always)\n"
+    "  --gate-min-overlap M2  ... and the maps share at least M2 m² of free space (default {gate_min_overlap_m2}; 0: any)\n"
     "  --estimate-scale   estimate each source's scale (its resolution may be off by 0.5-2x); the summary\n"
     "                     gives the scale errors against the ground truth\n"
     "  --source-resolution R  take every source map as R m/pixel (a pair's source_resolution still wins)\n"
@@ -1217,7 +1237,7 @@ const char* kEvalHelp =
     "  --picture-scale F  shrink pictures by this integer factor (default: to at most 2000 px wide)\n"
     "Per pair, the manifest may give door_width_m, source_resolution, destination_resolution,\n"
     "allow_reflection, ambiguous (reported, and counted apart in the summary) and different_buildings\n"
-    "(true: the maps must not match; correct when rejected).\n";
+    "(true: the maps must not match; correct when rejected).\n");
 
 std::vector<std::string> split_names(const std::string& list) {
   std::vector<std::string> names;
@@ -1327,7 +1347,7 @@ int run_eval(const std::vector<std::string>& tokens) {
 
 // ----------------------------------------------------------------------------------- calibrate
 
-const char* kCalibrateHelp =
+const std::string kCalibrateHelp = with_decision_defaults(
     "usage: areamatch calibrate RESULTS.csv [RESULTS.csv ...] [options]\n"
     "Fits the accept/reject decision (p_correct, include/areamatch/match/decision.hpp) on the rows of\n"
     "'areamatch eval --out DIR' runs (DIR/results.csv; run them with --cross-buildings for pairs that\n"
@@ -1347,10 +1367,10 @@ const char* kCalibrateHelp =
     "leave-one-real-building-out (generated buildings always train).\n"
     "Options:\n"
     "  --l2 L             L2 penalty on the weights (default 1)\n"
-    "  --accept-p P       accepted on the model alone at p_correct >= P (default 0.85)\n"
-    "  --min-agreement A  accepted at agreement >= A (default 0.835; above 1: the model alone)\n"
-    "  --gate-max-lower-walls W  ... when the lower wall agreement is <= W (default 0.7; above 1: always)\n"
-    "  --gate-min-overlap M2  ... and the shared free space is >= M2 m² (default 100; 0: any; kept, not\n"
+    "  --accept-p P       accepted on the model alone at p_correct >= P (default {accept_p_correct})\n"
+    "  --min-agreement A  accepted at agreement >= A (default {min_agreement}; above 1: the model alone)\n"
+    "  --gate-max-lower-walls W  ... when the lower wall agreement is <= W (default {gate_max_lower_walls}; above 1: always)\n"
+    "  --gate-min-overlap M2  ... and the shared free space is >= M2 m² (default {gate_min_overlap_m2}; 0: any; kept, not\n"
     "                     chosen, by --choose-rule)\n"
     "  --svg OUT.svg      the reliability diagram of the real buildings' rows (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
@@ -1363,7 +1383,7 @@ const char* kCalibrateHelp =
     "                     inner cross-validation per building)\n"
     "  --max-false-accept F  the bound for --choose-rule (default 0.005)\n"
     "  --choose-on all|real  the rows --choose-rule chooses on: every row, generated ones too\n"
-    "                     (default), or real buildings' alone; judged on real buildings either way\n";
+    "                     (default), or real buildings' alone; judged on real buildings either way\n");
 
 /// `calibrate --choose-rule`: the rule chosen on the rows' cross-validated predictions, and that choice
 /// judged by nested leave-one-building-out cross-validation.
