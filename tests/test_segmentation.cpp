@@ -813,3 +813,20 @@ TEST_CASE("the free end of a pruned spur joins the region its spur led into") {
   MESSAGE("lone nodes: " << lone_nodes);
   CHECK(lone_nodes > 0);  // the case is exercised
 }
+
+TEST_CASE("parameters the segmenter derives from another stage are refused, not silently ignored") {
+  const auto building = generate_building({}, 3);
+  VoronoiSegmenter derived_keep;
+  derived_keep.params.skeleton.keep_clearance_m = 1.0;  // VoronoiSegmenter sets it from the door width
+  CHECK_THROWS_WITH_AS(derived_keep.segment(building.layout), doctest::Contains("door width"), parameter_error);
+  VoronoiSegmenter derived_clearance;
+  derived_clearance.params.areas.min_clearance_m = 0.4;  // ... and this from SkeletonParams::min_clearance_m
+  CHECK_THROWS_WITH_AS(derived_clearance.segment(building.layout), doctest::Contains("SkeletonParams::min_clearance_m"),
+                       parameter_error);
+  VoronoiSegmenter agreeing;  // set to what the segmenter derives: accepted, the same graph
+  agreeing.params.skeleton.min_clearance_m = 0.3;
+  agreeing.params.areas.min_clearance_m = 0.3;
+  VoronoiSegmenter skeleton_only;
+  skeleton_only.params.skeleton.min_clearance_m = 0.3;
+  CHECK(agreeing.segment(building.layout).areas.size() == skeleton_only.segment(building.layout).areas.size());
+}

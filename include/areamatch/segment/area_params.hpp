@@ -12,7 +12,8 @@ struct AreaParams {
   double min_area_m2 = 1.0;
   /// How far labelling continues beyond the space the skeleton reaches.
   double fringe_m = 0.5;
-  /// The skeleton's `min_clearance_m` (the segmenter keeps them equal): labelling first grows
+  /// The skeleton's `min_clearance_m` (`VoronoiSegmenter` sets it from `SkeletonParams::min_clearance_m`
+  /// and refuses another value here; `build_areas` called directly reads it): labelling first grows
   /// over free cells at least this far from every wall, where the skeleton lives.
   double min_clearance_m = 0.25;
   /// An area whose hull diameter exceeds this many times its widest free disc's diameter is a

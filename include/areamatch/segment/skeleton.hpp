@@ -77,7 +77,8 @@ struct SkeletonParams {
   /// (wall niches, corner spurs), repeatedly until none is left.
   double spur_length_m = 1.0;
   /// A dead end whose clearance reaches this is a room, never a spur. `VoronoiSegmenter` sets it
-  /// from the door width (`detail::room_clearance_m`, the threshold `detect_rooms` uses).
+  /// from the door width (`detail::room_clearance_m`, the threshold `detect_rooms` uses) and
+  /// refuses another value here; `build_skeleton` called directly reads it.
   double keep_clearance_m = 0.625;
   /// Compute the Voronoi diagram's corner circle events without multiprecision where that is
   /// provably as accurate (detail/voronoi_circles.hpp: about half the diagram's time); false:

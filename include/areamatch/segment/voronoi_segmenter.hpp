@@ -84,7 +84,16 @@ struct VoronoiSegmenter {
     params.skeleton.validate();
     params.rooms.validate();
     params.areas.validate();
-    // Parameters that must agree between stages are derived from one place.
+    // Parameters that must agree between stages are derived from one place; a value set in the
+    // other place would be overwritten, so it is refused instead of silently ignored.
+    if (params.skeleton.keep_clearance_m != SkeletonParams{}.keep_clearance_m) {
+      throw parameter_error("SkeletonParams::keep_clearance_m is set by VoronoiSegmenter from the door width "
+                            "(RoomParams::door_width_m, with_door_width); set that instead");
+    }
+    if (params.areas.min_clearance_m != AreaParams{}.min_clearance_m && params.areas.min_clearance_m != params.skeleton.min_clearance_m) {
+      throw parameter_error("AreaParams::min_clearance_m is set by VoronoiSegmenter from SkeletonParams::min_clearance_m; "
+                            "set that instead");
+    }
     SkeletonParams skeleton_params = params.skeleton;
     skeleton_params.keep_clearance_m = detail::room_clearance_m(params.rooms.door_width_m, grid.resolution());
     AreaParams area_params = params.areas;
