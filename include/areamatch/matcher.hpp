@@ -3,6 +3,7 @@
 /// `Matcher<Segmenter, Features, Weights, Clusterer, Selection>`: two occupancy grids → the
 /// transform between them, through the stages of `match/`:
 ///
+///   inputs.hpp        what is checked of the maps given (each graph from its grid, the area limit)
 ///   map_data.hpp      what each map gives alone (descriptors, rasters, edges, lookups)
 ///   features.hpp      per-area descriptors and costs (area size, passage distances, hull diameter)
 ///   costs.hpp         weighted cost matrix, mutual k-nearest-neighbour area pairs
@@ -13,11 +14,13 @@
 ///   edges.hpp         the edges of free space and of the areas, as cells and thinned points
 ///   boundary_lookup.hpp  nearest boundary point per cell (and per facing direction), normals
 ///   refine.hpp        trimmed ICP on the free-space boundaries
-///   evidence.hpp      how much the maps agree under the answer
+///   answer.hpp        the hypotheses of all pairs; what describes the selected answer
+///   evidence.hpp      how much the maps agree under the answer (occupied_walls.hpp: walls against walls)
+///   correspondence.hpp  which room is which, each with its own local transform
 ///   margins.hpp       how far the answer stands out from its rivals and its own turns
 ///   decision.hpp      p_correct, the calibrated probability that the answer is right
 ///   acceptance.hpp    the rule that sets `ok`
-///   scale_search.hpp  the source's scale unknown (`estimate_scale`)
+///   scale.hpp, scale_search.hpp  the source's scale unknown (`estimate_scale`)
 ///   result.hpp        MatchResult
 ///   params.hpp        MatcherParams, every tunable, and the paper's preset
 ///   schedule.hpp      which work runs on which thread, and its timing
