@@ -5,7 +5,7 @@
 #   eval CSVs: shared pairs with --cross-buildings, --paper, hand-held pairs --no-reflection,
 #              --estimate-scale on three pairs (columns ending in _ms dropped);
 #   the F5 merge JSON (timings dropped);
-#   segment --labels/--json of every map (keys ending in _s/_ms and "timings" dropped).
+#   segment --labels/--graph of every map (keys ending in _s/_ms and "timings" dropped).
 #   scripts/outputs_digest.sh AREAMATCH_BINARY OUT_DIR     (~3 min on 2 cores)
 # then e.g. `diff -r OLD_DIR NEW_DIR`. Needs ../shared and python3.
 set -euo pipefail
@@ -39,9 +39,12 @@ evaluate paper "$shared/pairs.json" --paper
 evaluate handheld "$hh/pairs.json" --no-reflection
 evaluate scale "$shared/pairs.json" --estimate-scale --only lab_b_rot123,freiburg52,ipa_map_pgm
 "$bin" merge "$hh/maps/F5_layout.yaml" "$hh"/maps/F5_??.yaml --door-width 1.0 --json 2> /dev/null | json_without_times > "$out/merge_F5.json" || true
+# The graph file's option: --graph since `--json` became a flag; --json FILE in older builds.
+graph_option=--graph
+"$bin" segment --help | grep -q -- '--graph' || graph_option=--json
 for yaml in "$shared"/maps/*.yaml "$hh"/maps/*.yaml; do
   name=$(basename "$yaml" .yaml)
-  "$bin" segment "$yaml" --labels "$out/segment/$name.png" --json "$out/segment/$name.raw.json" > /dev/null 2>&1 || true
+  "$bin" segment "$yaml" --labels "$out/segment/$name.png" "$graph_option" "$out/segment/$name.raw.json" > /dev/null 2>&1 || true
   json_without_times < "$out/segment/$name.raw.json" > "$out/segment/$name.json" 2> /dev/null || true
   rm -f "$out/segment/$name.raw.json"
 done

@@ -25,7 +25,7 @@ import numpy as np
 
 def passages_px(areamatch, path, resolution, out_json):
     """Passage positions of the map at `path`, segmented at `resolution`, in image pixels."""
-    subprocess.run([areamatch, "segment", path, "--resolution", repr(resolution), "--json", out_json],
+    subprocess.run([areamatch, "segment", path, "--resolution", repr(resolution), "--graph", out_json],
                    check=True, capture_output=True)
     with open(out_json) as f:
         graph = json.load(f)

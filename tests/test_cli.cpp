@@ -104,7 +104,7 @@ TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
   const std::string dir = areamatch_test::temp_dir() + "/segment";
   REQUIRE(run("generate " + dir + " --seed 5 --width 20 --height 14").status == 0);
   const Run seg = run("segment " + dir + "/layout.yaml --png " + dir + "/seg.png --svg " + dir + "/seg.svg --labels " +
-                      dir + "/labels.png --json " + dir + "/graph.json --show-skeleton");
+                      dir + "/labels.png --graph " + dir + "/graph.json --show-skeleton");
   INFO(seg.out);
   CHECK(seg.status == 0);
   CHECK(seg.out.rfind("areas ", 0) == 0);
@@ -118,8 +118,16 @@ TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
   CHECK(text.find("\"areas\": [") != std::string::npos);
   CHECK(text.find("\"passages\": [") != std::string::npos);
   // Same input, same JSON.
-  REQUIRE(run("segment " + dir + "/layout.yaml --json " + dir + "/graph2.json").status == 0);
+  REQUIRE(run("segment " + dir + "/layout.yaml --graph " + dir + "/graph2.json").status == 0);
   CHECK(areamatch::detail::read_file_bytes(dir + "/graph2.json") == json);
+  // --json is a flag, as in every other command: the same graph on stdout, and nothing else.
+  const Run printed = run("segment " + dir + "/layout.yaml --json", false);
+  CHECK(printed.status == 0);
+  CHECK(printed.out == text + "\n");
+  // The old spelling `--json FILE` is refused with what to write instead, not read as a second map.
+  const Run old_spelling = run("segment " + dir + "/layout.yaml --json " + dir + "/graph3.json");
+  CHECK(old_spelling.status == 2);
+  CHECK(old_spelling.out.find("write it to a file with --graph " + dir + "/graph3.json") != std::string::npos);
 
   areamatch_test::write_bytes(dir + "/walls.pgm", std::string("P5 3 3 255\n") + std::string(9, '\0'));
   const Run empty = run("segment " + dir + "/walls.pgm");
@@ -545,6 +553,24 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   const Run bad = run("calibrate " + out + "/bad.csv");
   CHECK(bad.status == 2);
   CHECK(bad.out.find("no column") != std::string::npos);
+  // A number column holding text: bad input (exit 2, naming the line and column), not an internal error (3).
+  {
+    const std::string results = read_text(out + "/results.csv");
+    const std::string header = results.substr(0, results.find('\n'));
+    std::string row;
+    std::stringstream names(header);
+    for (std::string name; std::getline(names, name, ',');) {
+      if (name.empty()) continue;
+      const std::string field = name == "name" ? "a" : name == "different_buildings" ? "true" : name == "free_iou" ? "lots"
+                              : name == "failure" || name == "transform_correct" || name == "reason" ? "" : "0";
+      row += (row.empty() && name == "name" ? "" : ",") + field;
+    }
+    if (header.back() == ',') row += ",";
+    areamatch_test::write_bytes(out + "/text.csv", header + "\n" + row + "\n");
+    const Run text = run("calibrate " + out + "/text.csv");
+    CHECK(text.status == 2);
+    CHECK_MESSAGE(text.out.find("text.csv:2: column 'free_iou' holds 'lots', not a number") != std::string::npos, text.out);
+  }
   // Only pairs of one building: nothing to tell right from wrong by.
   REQUIRE(run("eval " + dir + "/pairs.json --out " + out + "/same", false).status == 0);
   const Run one_sided = run("calibrate " + out + "/same/results.csv");
@@ -748,6 +774,9 @@ TEST_CASE("merge: maps of one building placed and fused, JSON, a merged map that
            {maps + " --out " + dir + "/merged.pgm", "must name a .yaml file"},
            {maps + " --bend-length 3", "give --non-rigid too"},
            {maps + " --non-rigid --control-spacing 0", "--control-spacing"},
+           // One meaning per flag name: --resolution is an input's cell size elsewhere.
+           {maps + " --resolution 0.1", "the merged map's is --merged-resolution"},
+           {maps + " --merged-resolution 0", "--merged-resolution must be positive"},
            {maps + " " + dir + "/missing.yaml", "missing.yaml"}}) {
     const std::string& arguments = bad_input.first;  // not a structured binding: the checks' lambdas capture it
     const std::string& message = bad_input.second;

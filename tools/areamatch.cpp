@@ -33,6 +33,7 @@
 #include <functional>
 #include <iostream>
 #include <map>
+#include <new>
 #include <numeric>
 #include <optional>
 #include <sstream>
@@ -57,6 +58,10 @@ using areamatch_cli::reliability_svg;
 using areamatch_cli::Rule;
 using areamatch_cli::ReliabilityBin;
 using areamatch_cli::UsageError;
+
+bool ends_with(const std::string& text, const std::string& end) {
+  return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
+}
 
 const std::set<std::string> kMapFlags = {"negate", "help"};
 const std::set<std::string> kMapOptions = {"resolution", "free-thresh", "occupied-thresh"};
@@ -518,7 +523,8 @@ const char* kSegmentHelp =
     "  --svg OUT.svg      the same as SVG (passages as vectors)\n"
     "  --show-skeleton    draw the Voronoi skeleton in the pictures\n"
     "  --labels OUT.png   16-bit label image the size of the map: area id + 1 per pixel, 0 = none\n"
-    "  --json OUT.json    the graph: areas (polygons in metres, world frame), passages, map frame\n";
+    "  --graph OUT.json   write the graph: areas (polygons in metres, world frame), passages, map frame\n"
+    "  --json             print the graph as exactly one JSON object on stdout (no summary line)\n";
 
 areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& door_option = "door-width") {
   areamatch::VoronoiSegmenter segmenter;
@@ -541,12 +547,19 @@ areamatch::GreyImage label_image(const areamatch::AreaGraph& graph) {
 }
 
 int run_segment(const std::vector<std::string>& tokens) {
-  const Args args(tokens, merged(kMapFlags, {"show-skeleton"}), merged(kMapOptions, {"door-width", "min-area", "room-margin", "simplify", "speckle-area", "speckle-size", "min-traced-width", "png", "svg", "labels", "json"}));
+  const Args args(tokens, merged(kMapFlags, {"show-skeleton", "json"}),
+                  merged(kMapOptions, {"door-width", "min-area", "room-margin", "simplify", "speckle-area", "speckle-size",
+                                       "min-traced-width", "png", "svg", "labels", "graph"}));
   if (args.flag("help")) {
     std::cout << kSegmentHelp << kMapOptionsHelp;
     return 0;
   }
-  make_output_folders(args, {"png", "svg", "labels", "json"});
+  make_output_folders(args, {"png", "svg", "labels", "graph"});
+  // `--json` was once `--json OUT.json`; as everywhere else it is now a flag (stdout).
+  if (args.flag("json") && args.positional().size() == 2 && ends_with(args.positional()[1], ".json")) {
+    throw UsageError("--json prints the graph on stdout and takes no file; write it to a file with --graph " +
+                     args.positional()[1]);
+  }
   args.expect_positional(1, "MAP");
   const auto segmenter = segmenter_from(args);
   const auto options = load_options(args);
@@ -562,12 +575,16 @@ int run_segment(const std::vector<std::string>& tokens) {
     areamatch::write_text_file(*svg, areamatch::area_graph_svg(grid, graph, args.flag("show-skeleton") ? &details.skeleton : nullptr));
   }
   if (const auto labels = args.text("labels")) areamatch::write_png(*labels, label_image(graph));
-  if (const auto json = args.text("json")) areamatch::write_text_file(*json, areamatch::area_graph_json(graph));
-  std::cout << "areas " << graph.areas.size() << ", passages " << graph.passages.size() << ", covered "
+  if (const auto file = args.text("graph")) areamatch::write_text_file(*file, areamatch::area_graph_json(graph));
+  if (args.flag("json")) {
+    std::cout << areamatch::area_graph_json(graph) << "\n";
+  } else {
+    std::cout << "areas " << graph.areas.size() << ", passages " << graph.passages.size() << ", covered "
             << format_fixed(100.0 * graph.covered_fraction, 1) << " % of free space, " << format_fixed(1000.0 * t.total_s, 1)
             << " ms (binarize " << format_fixed(1000.0 * t.binarize_s, 1) << ", boundary " << format_fixed(1000.0 * t.boundary_s, 1)
             << " [" << details.boundary_segments << " segments], skeleton " << format_fixed(1000.0 * t.skeleton_s, 1)
             << ", rooms " << format_fixed(1000.0 * t.rooms_s, 1) << ", areas " << format_fixed(1000.0 * t.areas_s, 1) << ")\n";
+  }
   if (graph.areas.empty()) {
     std::cerr << "areamatch segment: " << args.positional()[0] << ": no areas: " << graph.reason << "\n";
     return 1;
@@ -1027,7 +1044,7 @@ const std::string kMergeHelp = with_decision_defaults(
     "  --json               print exactly one JSON object on stdout\n"
     "  --allow-reflection   a map may be a mirror image of the others\n"
     "  --door-width M       door width for every map, metres (default 1.2, see segment --help)\n"
-    "  --resolution M       metres per cell of the merged map (default: the finest map's)\n"
+    "  --merged-resolution M  metres per cell of the merged map (default: the finest map's)\n"
     "  --wall-share S       a merged cell is occupied when at least this share of the maps that saw it\n"
     "                       saw a wall (default 0.5)\n"
     "  --max-residual M     drop a match whose areas land more than M metres apart under the fitted\n"
@@ -1066,7 +1083,7 @@ areamatch::MergeParams merge_params_from(const Args& args, const std::vector<std
     if (it == paths.end()) throw UsageError("--reference '" + *reference + "' is not one of the maps given");
     merge_params.reference = static_cast<std::size_t>(it - paths.begin());
   }
-  if (const auto r = args.number("resolution", /*positive=*/true)) merge_params.fuse.resolution = *r;
+  if (const auto r = args.number("merged-resolution", /*positive=*/true)) merge_params.fuse.resolution = *r;
   if (const auto share = args.number("wall-share", true)) {
     if (*share > 1.0) throw UsageError("--wall-share must be in (0, 1], got " + format_double(*share));
     merge_params.fuse.wall_share = *share;
@@ -1128,11 +1145,17 @@ void print_merge_summary(const areamatch::MergeResult& result, const std::vector
 
 int run_merge(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "non-rigid", "help"},
-                  {"reference", "out", "png", "door-width", "resolution", "wall-share", "max-residual", "min-agreement",
+                  {"reference", "out", "png", "door-width", "merged-resolution", "resolution", "wall-share", "max-residual", "min-agreement",
                    "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads", "control-spacing", "bend-length"});
   if (args.flag("help")) {
     std::cout << kMergeHelp;
     return 0;
+  }
+  // `--resolution` is an input map's cell size in info and segment; merge's output cell size
+  // was once `--resolution` too, so the old spelling is refused rather than read either way.
+  if (args.text("resolution")) {
+    throw UsageError("--resolution is an input map's metres per cell (info, segment); the merged map's is "
+                     "--merged-resolution");
   }
   make_output_folders(args, {"out", "png"});
   const std::vector<std::string>& paths = args.positional();
@@ -1575,7 +1598,8 @@ const char* kMainHelp =
     "  simulate PLAN OUTDIR  simulated laser-SLAM maps of a floor plan, with ground truth\n"
     "  calibrate CSV...  fit the accept/reject decision on eval results, cross-validated by building\n"
     "  version           print the version\n"
-    "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage.\n"
+    "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage, 3 internal error (a bug:\n"
+    "please report it with the command and the maps) or out of memory.\n"
     "A run of match, warp, assess or merge over a second shows its stage on stderr when stderr is a\n"
     "terminal (AREAMATCH_PROGRESS=always draws it anyway, =never never).\n";
 
@@ -1605,8 +1629,12 @@ int main(int argc, char** argv) {
   } catch (const areamatch::error& e) {
     std::cerr << "areamatch " << command << ": " << e.what() << "\n";
     return 2;
+  } catch (const std::bad_alloc&) {
+    std::cerr << "areamatch " << command << ": out of memory\n";
+    return 3;
   } catch (const std::exception& e) {
-    std::cerr << "areamatch " << command << ": unexpected error: " << e.what() << "\n";
-    return 2;
+    std::cerr << "areamatch " << command << ": internal error (please report it with the command and the maps): "
+              << e.what() << "\n";
+    return 3;
   }
 }

@@ -453,7 +453,7 @@ void bind_area_graph(py::module_& m) {
              return out;
            },
            "int32 image (rows, cols) of area ids, -1 where no area")
-      .def("to_json", &am::area_graph_json, "the JSON text of `areamatch segment --json`")
+      .def("to_json", &am::area_graph_json, "the JSON text of `areamatch segment --json` (and its `--graph` file)")
       .def("to_dict", [](const am::AreaGraph& g) { return json_loads(am::area_graph_json(g)); })
       .def("picture", [](const am::AreaGraph& g, const am::OccupancyGrid& grid) { return am::render_area_graph(grid, g); },
            py::arg("map"), release_gil(), "the areas over the map, as `areamatch segment --png` draws them")

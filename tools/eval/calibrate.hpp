@@ -14,6 +14,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
@@ -123,11 +124,18 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
                     c_turn = column("turn_margin"), c_iou = column("free_iou"),
                     c_occupied = column("occupied_wall_agreement"),
                     c_p = column("p_correct"), c_agreement = column("agreement");
-  auto value = [&](const std::vector<std::string>& f, std::size_t c) {
-    return f[c].empty() ? std::nan("") : std::stod(f[c]);
-  };
   std::vector<CalibrationRow> rows;
   std::size_t line_number = 1;
+  auto value = [&](const std::vector<std::string>& f, std::size_t c) {
+    if (f[c].empty()) return std::nan("");
+    char* end = nullptr;
+    const double v = std::strtod(f[c].c_str(), &end);
+    if (end != f[c].c_str() + f[c].size()) {
+      throw areamatch::format_error(path + ":" + std::to_string(line_number) + ": column '" + header[c] + "' holds '" + f[c] +
+                                    "', not a number");
+    }
+    return v;
+  };
   while (std::getline(in, line)) {
     ++line_number;
     if (line.empty()) continue;

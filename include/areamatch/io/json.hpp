@@ -1,6 +1,6 @@
 #pragma once
 /// \file io/json.hpp
-/// JSON text for Area Graphs (what `areamatch segment --json` writes) and match results (what
+/// JSON text for Area Graphs (what `areamatch segment --json` prints and `--graph` writes) and match results (what
 /// `areamatch match --json` prints). Numbers are written so
 /// that they read back exactly; keys and arrays come in a fixed order, so equal graphs give
 /// equal text.
