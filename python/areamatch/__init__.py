@@ -60,13 +60,9 @@ segment = _takes_maps(segment, ("map",))
 assess = _takes_maps(assess, ("map", "reference"))
 
 
-def _from_dict(key, doc):
-    return property(lambda self: self.to_dict()[key], doc=doc)
-
-
-# The parts of a result that the JSON already spells out are read from it, so the keys and their
-# meaning are those of `areamatch match --json` / `merge --json` (docs/cli.md).
-Result.evidence = _from_dict("evidence", "How much the maps agree under the result (dict).")
+# Result.evidence, statistics, timings, rejection and the margins, and MergeResult.edges and
+# timings, are read natively from the result (the keys and values of `areamatch match --json` /
+# `merge --json`, docs/cli.md); matched_areas wraps the native dicts as MatchedArea.
 class MatchedArea(dict):
     """One room correspondence of a match, read as attributes (`a.source`, `a.dest`, `a.iou`) or,
     as before, as dict keys: source and dest (area ids), overlap, iou, local_rotation_deg,
@@ -85,17 +81,8 @@ class MatchedArea(dict):
 
 
 Result.matched_areas = property(
-    lambda self: [MatchedArea(a) for a in self.to_dict()["matched_areas"]],
+    lambda self: [MatchedArea(a) for a in self._matched_area_dicts],
     doc="Room correspondences (list of MatchedArea: source, dest, overlap, iou, local_rotation_deg, ...).")
-Result.rejection = property(
-    lambda self: self.to_dict().get("rejection"),
-    doc="What a refusal says of the maps: 'different places', 'not sure' or 'no answer' (None when ok).")
-Result.statistics = _from_dict("statistics", "Counts of areas, pairs, hypotheses (dict).")
-Result.timings = _from_dict("timings", "Seconds per step (dict).")
-Result.margin_different = _from_dict("margin_different", "Margin over the best clearly different transform.")
-Result.margin_mirrored = _from_dict("margin_mirrored", "Margin over the best mirrored transform (None without reflection).")
-MergeResult.edges = _from_dict("edges", "Every pairwise match run: from, to, ok, p_correct, used, residual_m, note.")
-MergeResult.timings = _from_dict("timings", "Seconds per step (dict).")
 
 
 def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None,

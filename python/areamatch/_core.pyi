@@ -99,7 +99,7 @@ class Result:
     dest_map: Map
     source_graph: AreaGraph
     dest_graph: AreaGraph
-    # Read from to_dict() (areamatch/__init__.py):
+    # Read natively, with the keys of to_dict() (matched_areas wrapped in areamatch/__init__.py):
     evidence: Dict[str, Any]
     matched_areas: List[Dict[str, Any]]  # MatchedArea objects: dicts read as attributes too
     rejection: Optional[str]  # 'different places', 'not sure', 'no answer'; None when ok

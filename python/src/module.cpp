@@ -23,6 +23,7 @@
 #include <optional>
 #include <string>
 #include <tuple>
+#include <initializer_list>
 #include <utility>
 #include <variant>
 #include <vector>
@@ -474,6 +475,70 @@ void bind_area_graph(py::module_& m) {
 
 }
 
+/// A number as the JSON of the result gives it: None where that says null (NaN, infinite).
+py::object number_or_none(double v) { return std::isfinite(v) ? py::object(py::float_(v)) : py::object(py::none()); }
+
+/// A dict of named numbers, each as the JSON gives it (`number_or_none`), in the order given.
+py::dict numbers_dict(std::initializer_list<std::pair<const char*, double>> numbers) {
+  py::dict d;
+  for (const auto& [name, value] : numbers) d[name] = number_or_none(value);
+  return d;
+}
+
+/// `Result.evidence`, built from the struct (the keys and values of `areamatch match --json`'s).
+py::dict evidence_dict(const am::MatchEvidence& e) {
+  return numbers_dict({{"agreement", e.agreement},
+                       {"wall_agreement", e.wall_agreement},
+                       {"reverse_wall_agreement", e.reverse_wall_agreement},
+                       {"forward_wall_agreement", e.forward_wall_agreement},
+                       {"free_iou", e.free_iou},
+                       {"source_on_dest", e.source_on_dest},
+                       {"dest_on_source", e.dest_on_source},
+                       {"passage_agreement", e.passage_agreement},
+                       {"room_agreement", e.room_agreement},
+                       {"overlap_m2", e.overlap_m2},
+                       {"turn_margin", e.turn_margin},
+                       {"occupied_wall_agreement", e.occupied_wall_agreement}});
+}
+
+py::list matched_area_dicts(const am::MatchResult& r) {
+  py::list out;
+  for (const auto& a : r.matched_areas) {
+    py::dict d;
+    d["source"] = a.source;
+    d["dest"] = a.dest;
+    d["overlap"] = number_or_none(a.overlap);
+    d["iou"] = number_or_none(a.iou);
+    d["local_rotation_deg"] = number_or_none(a.T_dest_source.rotation * 180.0 / am::pi);
+    py::list translation;
+    translation.append(number_or_none(a.T_dest_source.translation.x()));
+    translation.append(number_or_none(a.T_dest_source.translation.y()));
+    d["local_translation_m"] = translation;
+    d["wall_agreement"] = number_or_none(a.wall_agreement);
+    out.append(d);
+  }
+  return out;
+}
+
+py::dict statistics_dict(const am::MatchStatistics& s) {
+  py::dict d;
+  for (const auto& [name, count] : {std::pair<const char*, std::size_t>{"source_areas", s.source_areas},
+                                    {"dest_areas", s.dest_areas}, {"mutual_pairs", s.mutual_pairs},
+                                    {"hypotheses", s.hypotheses}, {"clusters", s.clusters}, {"verified", s.verified},
+                                    {"refined", s.refined}, {"scales_tried", s.scales_tried},
+                                    {"overlay_failures", s.overlay_failures}}) {
+    d[name] = count;
+  }
+  return d;
+}
+
+py::dict match_timings_dict(const am::MatchTimings& t) {
+  return numbers_dict({{"segment_source_s", t.segment_source_s}, {"segment_dest_s", t.segment_dest_s},
+                       {"match_s", t.match_s}, {"total_s", t.total_s}, {"prepare_s", t.prepare_s},
+                       {"features_s", t.features_s}, {"hypotheses_s", t.hypotheses_s},
+                       {"clustering_s", t.clustering_s}, {"selection_s", t.selection_s}});
+}
+
 /// Result, Picture and match().
 void bind_match(py::module_& m) {
   py::class_<MatchRun>(m, "Result", "A match of a source map onto a destination map.")
@@ -495,10 +560,33 @@ void bind_match(py::module_& m) {
       .def_property_readonly("ambiguous", [](const MatchRun& r) { return r.run.result.ambiguous; })
       .def_property_readonly("p_correct", [](const MatchRun& r) { return r.run.result.p_correct; },
                              "calibrated probability that the transform is right (docs/evaluation.md)")
-      .def_property_readonly("source_map", [](const MatchRun& r) { return r.run.source; })
-      .def_property_readonly("dest_map", [](const MatchRun& r) { return r.run.dest; })
-      .def_property_readonly("source_graph", [](MatchRun& r) { return r.source_graph(); })
-      .def_property_readonly("dest_graph", [](const MatchRun& r) { return r.run.dest_graph; })
+      // The maps and graphs are the result's own, not copies: each keeps the result alive.
+      .def_property_readonly("source_map", [](const MatchRun& r) -> const am::OccupancyGrid& { return r.run.source; },
+                             py::return_value_policy::reference_internal)
+      .def_property_readonly("dest_map", [](const MatchRun& r) -> const am::OccupancyGrid& { return r.run.dest; },
+                             py::return_value_policy::reference_internal)
+      .def_property_readonly("source_graph", [](MatchRun& r) -> const am::AreaGraph& { return r.source_graph(); },
+                             py::return_value_policy::reference_internal)
+      .def_property_readonly("dest_graph", [](const MatchRun& r) -> const am::AreaGraph& { return r.run.dest_graph; },
+                             py::return_value_policy::reference_internal)
+      // Read from the struct, with the keys and values of `areamatch match --json` (no JSON round trip).
+      .def_property_readonly("evidence", [](const MatchRun& r) { return evidence_dict(r.run.result.evidence); },
+                             "How much the maps agree under the result (dict).")
+      .def_property_readonly("statistics", [](const MatchRun& r) { return statistics_dict(r.run.result.statistics); },
+                             "Counts of areas, pairs, hypotheses (dict).")
+      .def_property_readonly("timings", [](const MatchRun& r) { return match_timings_dict(r.run.result.timings); },
+                             "Seconds per step (dict).")
+      .def_property_readonly("rejection",
+                             [](const MatchRun& r) -> py::object {
+                               if (r.run.result.ok) return py::none();
+                               return py::str(am::to_string(r.run.result.rejection));
+                             },
+                             "What a refusal says of the maps: 'different places', 'not sure' or 'no answer' (None when ok).")
+      .def_property_readonly("margin_different", [](const MatchRun& r) { return number_or_none(r.run.result.margin_different); },
+                             "Margin over the best clearly different transform.")
+      .def_property_readonly("margin_mirrored", [](const MatchRun& r) { return number_or_none(r.run.result.margin_mirrored); },
+                             "Margin over the best mirrored transform (None without reflection).")
+      .def_property_readonly("_matched_area_dicts", [](const MatchRun& r) { return matched_area_dicts(r.run.result); })
       .def("to_json", [](const MatchRun& r) { return am::match_result_json(r.run.result); },
            "the JSON text of `areamatch match --json`")
       .def("to_dict", [](const MatchRun& r) { return json_loads(am::match_result_json(r.run.result)); })
@@ -628,7 +716,35 @@ void bind_merge_result(py::class_<MergeRun>& merge_result) {
                                return d;
                              },
                              "the merged map's wall cells and the doubled ones (merge/double_walls.hpp)")
-      .def_property_readonly("merged", [](const MergeRun& r) { return r.result.merged; }, "the fused Map (reference frame)")
+      .def_property_readonly("merged", [](const MergeRun& r) -> const am::OccupancyGrid& { return r.result.merged; },
+                             py::return_value_policy::reference_internal, "the fused Map (reference frame; keeps the result alive)")
+      .def_property_readonly("edges",
+                             [](const MergeRun& r) {
+                               py::list out;
+                               for (const auto& e : r.result.edges) {
+                                 auto name = [&](std::size_t i) { return i < r.names.size() ? r.names[i] : "map " + std::to_string(i); };
+                                 py::dict d;
+                                 d["from"] = name(e.source);
+                                 d["to"] = name(e.dest);
+                                 d["ok"] = e.match.ok;
+                                 d["p_correct"] = number_or_none(e.match.p_correct);
+                                 d["agreement"] = number_or_none(e.match.evidence.agreement);
+                                 d["used"] = e.used;
+                                 d["residual_m"] = number_or_none(e.residual_m);
+                                 if (!e.used) d["note"] = e.note;
+                                 out.append(d);
+                               }
+                               return out;
+                             },
+                             "Every pairwise match run: from, to, ok, p_correct, agreement, used, residual_m, note.")
+      .def_property_readonly("timings",
+                             [](const MergeRun& r) {
+                               const am::MergeTimings& t = r.result.timings;
+                               return numbers_dict({{"matching_s", t.matching_s}, {"refine_s", t.refine_s},
+                                                    {"fit_s", t.fit_s}, {"warp_s", t.warp_s}, {"fuse_s", t.fuse_s},
+                                                    {"merge_s", t.total_s}});
+                             },
+                             "Seconds per step (dict).")
       .def("edge_results",
            [](const MergeRun& r) {
              std::vector<std::tuple<std::size_t, std::size_t, MatchRun>> out;

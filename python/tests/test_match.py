@@ -60,6 +60,20 @@ def test_match_finds_the_truth(robot, building):
     assert np.asarray(result.picture()).ndim == 3
 
 
+def test_result_parts_are_read_natively_with_the_json_keys_and_values(robot, building):
+    result = areamatch.match(robot.map, building.layout)
+    as_json = result.to_dict()
+    for key in ("evidence", "statistics", "timings", "margin_different", "margin_mirrored"):
+        assert getattr(result, key) == as_json[key], key
+    assert result.matched_areas == as_json["matched_areas"]
+    assert result.rejection is None and "rejection" not in as_json
+    # The maps and graphs are the result's own (no copy per access) and keep it alive.
+    source = result.source_map
+    graph = result.dest_graph
+    del result
+    assert source.width == robot.map.width and len(graph.areas) > 0
+
+
 def test_match_reports_progress_and_a_raise_stops_it(robot, building):
     seen = []
     result = areamatch.match(robot.map, building.layout, progress=lambda stage, done, total: seen.append(stage))
@@ -82,6 +96,7 @@ def test_match_rejects_another_building(robot):
     result = areamatch.match(robot.map, other)
     assert not result.ok and result.reason
     assert result.rejection in ("different places", "not sure") and result.reason.startswith(result.rejection + ": ")
+    assert result.rejection == result.to_dict()["rejection"] and result.evidence == result.to_dict()["evidence"]
 
 
 def test_the_agreement_gate_is_configurable(robot):

@@ -34,6 +34,9 @@ def test_merge_places_every_map(building):
     for source, dest, match in result.edge_results():
         assert 0 <= source < 4 and 0 <= dest < 4 and isinstance(match, areamatch.Result)
     assert result.timings["refine_s"] > 0
+    # Read natively, with the keys and values of `areamatch merge --json`.
+    assert result.edges == result.to_dict()["edges"]
+    assert result.timings == result.to_dict()["timings"]
     as_matched = areamatch.merge([building.layout] + [r.map for r in robots], same_side=False, build_merged_map=False)
     assert as_matched.ok and as_matched.timings["refine_s"] == 0
 
