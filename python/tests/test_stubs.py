@@ -50,3 +50,90 @@ def test_pyproject_reads_the_library_version():
     settings = tomllib.loads((root / "pyproject.toml").read_text())["tool"]["scikit-build"]["metadata"]["version"]
     found = re.search(settings["regex"], (root / settings["input"]).read_text())
     assert found and found.group("value") == areamatch.__version__
+
+
+def _split_top_level(text):
+    """Splits a parameter list at the commas outside brackets."""
+    parts, depth, current = [], 0, ""
+    for ch in text:
+        if ch in "([{":
+            depth += 1
+        elif ch in ")]}":
+            depth -= 1
+        if ch == "," and depth == 0:
+            parts.append(current.strip())
+            current = ""
+        else:
+            current += ch
+    if current.strip():
+        parts.append(current.strip())
+    return parts
+
+
+def _runtime_signatures(obj, name):
+    """The parameter lists pybind11 writes at the head of `obj`'s docstring (one per overload):
+    names in order, '*' where keyword-only ones begin, 'self' left out."""
+    import re
+    found = []
+    for line in (obj.__doc__ or "").splitlines():
+        m = re.match(r"^(?:\d+\. )?" + re.escape(name) + r"\((.*)\) -> ", line)
+        if not m:
+            continue
+        names = []
+        for part in _split_top_level(m.group(1)):
+            token = part.split(":")[0].split("=")[0].strip()
+            if token != "self":
+                names.append(token)
+        found.append(names)
+    return found
+
+
+def _stub_signature(node):
+    a = node.args
+    names = [x.arg for x in a.posonlyargs + a.args if x.arg != "self"]
+    if a.vararg:
+        names.append("*" + a.vararg.arg)
+    elif a.kwonlyargs:
+        names.append("*")
+    names += [x.arg for x in a.kwonlyargs]
+    if a.kwarg:
+        names.append("**" + a.kwarg.arg)
+    return names
+
+
+def test_stub_signatures_match_the_module():
+    # Not only the names: each function's and method's parameters, in order and keyword-only where
+    # the module's are (what mypy's stubtest checks; Debian has no stubtest).
+    tree = ast.parse(STUB.read_text())
+    checked = 0
+    for node in tree.body:
+        owners = []
+        if isinstance(node, ast.FunctionDef):
+            owners = [(getattr(_core, node.name), node)]
+        elif isinstance(node, ast.ClassDef):
+            cls = getattr(_core, node.name)
+            owners = [(getattr(cls, item.name), item) for item in node.body
+                      if isinstance(item, ast.FunctionDef) and not item.name.startswith("__")]
+        for obj, fn in owners:
+            runtime = _runtime_signatures(obj, fn.name)
+            if not runtime:
+                continue  # a property or a plain Python attribute: no pybind11 signature to read
+            assert _stub_signature(fn) in runtime, f"_core.pyi {fn.name}{_stub_signature(fn)} is not one of {runtime}"
+            checked += 1
+    assert checked >= 20, checked
+
+
+def test_package_stub_signatures_match_the_python_functions():
+    # __init__.pyi's own functions (written in Python: inspect reads their signatures).
+    import inspect
+    tree = ast.parse(pathlib.Path(areamatch.__file__).with_name("__init__.pyi").read_text())
+    functions = [node for node in tree.body if isinstance(node, ast.FunctionDef)]
+    assert functions
+    for fn in functions:
+        names, keyword_only = [], False
+        for p in inspect.signature(getattr(areamatch, fn.name)).parameters.values():
+            if p.kind is p.KEYWORD_ONLY and not keyword_only:
+                names.append("*")
+                keyword_only = True
+            names.append(p.name)
+        assert _stub_signature(fn) == names, f"__init__.pyi {fn.name}{_stub_signature(fn)} != {names}"
