@@ -203,18 +203,18 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
   for (std::size_t r = 0; r < n; ++r) {
     if (!members[r].empty()) piece_fit[r] = detail::fit_tile_group(tiles, members[r], fit[r], reference, T, params);
   }
-  detail::AreaSets pieces(n);
+  detail::DisjointSets pieces(n);
   for (std::size_t t = 0; t < n; ++t) {
     for (const std::size_t u : tiles.neighbours(t)) {
       const int a = root[t], b = root[u];
       if (u > t && a != b &&
           detail::fits_agree(piece_fit[static_cast<std::size_t>(a)], piece_fit[static_cast<std::size_t>(b)], tiles.shared_edge(t, u), params)) {
-        pieces.join(a, b);
+        pieces.join(static_cast<std::size_t>(a), static_cast<std::size_t>(b));
       }
     }
   }
   std::vector<int> piece_of_tile(n);
-  for (std::size_t t = 0; t < n; ++t) piece_of_tile[t] = pieces.find(root[t]);
+  for (std::size_t t = 0; t < n; ++t) piece_of_tile[t] = static_cast<int>(pieces.find(static_cast<std::size_t>(root[t])));
   std::vector<std::vector<std::size_t>> tiles_of(n);
   for (std::size_t t = 0; t < n; ++t) tiles_of[static_cast<std::size_t>(piece_of_tile[t])].push_back(t);
 

@@ -5,6 +5,7 @@
 /// the tiles grouped where neighbouring fits agree.
 
 #include "../area_graph.hpp"
+#include "../detail/disjoint_sets.hpp"
 #include "../grid.hpp"
 #include "../match/correspondence.hpp"
 #include "../match/refine.hpp"
@@ -23,27 +24,6 @@
 
 namespace areamatch {
 namespace detail {
-
-/// Union-find over areas (smaller root wins, so the result does not depend on the join order).
-class AreaSets {
- public:
-  explicit AreaSets(std::size_t n) : parent_(n) { std::iota(parent_.begin(), parent_.end(), 0); }
-  int find(int a) {
-    while (parent_[static_cast<std::size_t>(a)] != a) {
-      parent_[static_cast<std::size_t>(a)] = parent_[static_cast<std::size_t>(parent_[static_cast<std::size_t>(a)])];
-      a = parent_[static_cast<std::size_t>(a)];
-    }
-    return a;
-  }
-  void join(int a, int b) {
-    a = find(a);
-    b = find(b);
-    if (a != b) parent_[static_cast<std::size_t>(std::max(a, b))] = std::min(a, b);
-  }
-
- private:
-  std::vector<int> parent_;
-};
 
 /// Whether two fits agree at `at` (map world): turn and placed position.
 inline bool fits_agree(const Similarity2& a, const Similarity2& b, const Eigen::Vector2d& at, const AssessParams& params) {
@@ -157,21 +137,21 @@ inline void fit_each_tile(const WallTiles& tiles, const BoundaryLookup& referenc
 inline std::vector<int> group_tiles(const WallTiles& tiles, const BoundaryLookup& reference, const AssessParams& params,
                                     const std::vector<Similarity2>& fit, const std::vector<char>& fitted) {
   const std::size_t n = tiles.size();
-  AreaSets sets(n);
+  DisjointSets sets(n);
   for (std::size_t t = 0; t < n; ++t) {
     for (const std::size_t u : tiles.neighbours(t)) {
       if (u > t && fitted[t] && fitted[u] && fits_agree(fit[t], fit[u], tiles.shared_edge(t, u), params)) {
-        sets.join(static_cast<int>(t), static_cast<int>(u));
+        sets.join(t, u);
       }
     }
   }
   std::vector<std::size_t> set_points(n, 0);
   for (std::size_t t = 0; t < n; ++t) {
-    if (fitted[t]) set_points[static_cast<std::size_t>(sets.find(static_cast<int>(t)))] += tiles.walls[t].size();
+    if (fitted[t]) set_points[sets.find(t)] += tiles.walls[t].size();
   }
   std::vector<int> root(n, -1);
   for (std::size_t t = 0; t < n; ++t) {
-    const int r = sets.find(static_cast<int>(t));
+    const int r = static_cast<int>(sets.find(t));
     if (fitted[t] && set_points[static_cast<std::size_t>(r)] >= params.piece_min_points) root[t] = r;
   }
   if (std::all_of(root.begin(), root.end(), [](int r) { return r < 0; })) {

@@ -3,6 +3,7 @@
 /// Connected components of a binary mask, computed on horizontal runs of cells.
 
 #include "blocks.hpp"
+#include "disjoint_sets.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -65,19 +66,12 @@ inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int w
     }
   }
   out.row_start[height] = runs.size();
-  std::vector<std::size_t>& parent = out.component;
-  parent.resize(runs.size());
-  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = i;
-  auto find = [&](std::size_t i) {
-    while (parent[i] != i) i = parent[i] = parent[parent[i]];
-    return i;
-  };
+  DisjointSets joined(runs.size());
   // 8-connectivity also joins runs touching at a corner.
-  for_each_vertical_contact(runs, out.row_start, eight ? 1 : 0, [&](std::size_t upper, std::size_t lower) {
-    const std::size_t a = find(lower), b = find(upper);
-    if (a != b) parent[std::max(a, b)] = std::min(a, b);
-  });
-  for (std::size_t i = 0; i < parent.size(); ++i) parent[i] = find(i);
+  for_each_vertical_contact(runs, out.row_start, eight ? 1 : 0,
+                            [&](std::size_t upper, std::size_t lower) { joined.join(lower, upper); });
+  out.component.resize(runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) out.component[i] = joined.find(i);
   return out;
 }
 

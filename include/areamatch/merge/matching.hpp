@@ -3,6 +3,7 @@
 /// Step 1 of `merge_maps` (merge.hpp): which pairs are matched and in which direction, the
 /// matches, the lone matches not trusted, and the same-side refinement of the trusted ones.
 
+#include "../detail/disjoint_sets.hpp"
 #include "../detail/format.hpp"
 #include "../detail/parallel.hpp"
 #include "../grid.hpp"
@@ -60,17 +61,12 @@ std::vector<MergeEdge> match_pairs(const MatcherType& quiet, const Maps& maps, c
   std::vector<MergeEdge> edges;
   progress("match", 0, pairs.size());
   if (params.strategy == MergeStrategy::until_connected) {
-    std::vector<std::size_t> component(n);  // of accepted matches
-    for (std::size_t i = 0; i < n; ++i) component[i] = i;
-    auto root = [&](std::size_t i) {
-      while (component[i] != i) i = component[i] = component[component[i]];
-      return i;
-    };
+    detail::DisjointSets joined(n);  // by accepted matches
     for (const auto& [i, j] : pairs) {
-      if (root(i) != root(j)) {  // else already joined: the pair is done without a match
+      if (joined.find(i) != joined.find(j)) {  // else already joined: the pair is done without a match
         MergeEdge edge = make_edge(i, j);
         edge.match = quiet.match(maps[edge.source], maps[edge.dest]);
-        if (edge.match.ok) component[root(i)] = root(j);
+        if (edge.match.ok) joined.join(i, j);
         edges.push_back(std::move(edge));
       }
       progress.step("match", pairs.size());

@@ -3,6 +3,7 @@
 /// Steps 4–7 of `build_areas`: the labelling as runs, its 4-connected pieces, small pieces merged
 /// into the neighbour they share the longest border with, and which skeleton region became which area.
 
+#include "../detail/disjoint_sets.hpp"
 #include "binarize.hpp"
 
 #include <algorithm>
@@ -61,21 +62,14 @@ struct Pieces {
 /// equal label that overlap in consecutive rows); sets each run's `piece`.
 inline Pieces find_pieces(LabelRuns& labelled) {
   auto& runs = labelled.runs;
-  std::vector<int> run_parent(runs.size());
-  std::iota(run_parent.begin(), run_parent.end(), 0);
-  auto find_run = [&](int i) {
-    while (run_parent[i] != i) i = run_parent[i] = run_parent[run_parent[i]];
-    return i;
-  };
+  DisjointSets joined(runs.size());
   for_each_vertical_contact(runs, labelled.row_start, 0, [&](std::size_t upper, std::size_t lower) {
-    if (runs[upper].label != runs[lower].label) return;
-    const int x = find_run(static_cast<int>(upper)), y = find_run(static_cast<int>(lower));
-    if (x != y) run_parent[std::max(x, y)] = std::min(x, y);
+    if (runs[upper].label == runs[lower].label) joined.join(upper, lower);
   });
   Pieces pieces;
   std::vector<int> piece_of_root(runs.size(), -1);
   for (std::size_t i = 0; i < runs.size(); ++i) {
-    const int root = find_run(static_cast<int>(i));
+    const std::size_t root = joined.find(i);
     if (piece_of_root[root] < 0) {
       piece_of_root[root] = static_cast<int>(pieces.size.size());
       pieces.size.push_back(0);
@@ -113,12 +107,8 @@ inline PieceAreas merge_small_pieces(LabelRuns& labelled, const Pieces& pieces, 
     const int overlap = std::min(runs[upper].end, runs[lower].end) - std::max(runs[upper].begin, runs[lower].begin);
     add_border(runs[upper].piece, runs[lower].piece, static_cast<std::size_t>(overlap));
   });
-  std::vector<int> parent(piece_count);
-  std::iota(parent.begin(), parent.end(), 0);
-  auto find = [&](int p) {
-    while (parent[p] != p) p = parent[p] = parent[parent[p]];
-    return p;
-  };
+  DisjointSets merged(piece_count);  // the caller picks the survivor: `attach`, not `join`
+  auto find = [&](int p) { return static_cast<int>(merged.find(static_cast<std::size_t>(p))); };
   std::vector<std::size_t> size(pieces.size);
   std::vector<bool> dropped(piece_count, false);
   std::vector<std::map<int, std::size_t>> neighbours(piece_count);  // piece → border length
@@ -148,7 +138,7 @@ inline PieceAreas merge_small_pieces(LabelRuns& labelled, const Pieces& pieces, 
       dropped[p] = true;
       continue;
     }
-    parent[p] = target;
+    merged.attach(static_cast<std::size_t>(p), static_cast<std::size_t>(target));
     size[target] += size[p];
     for (const auto& [q, length] : shared) neighbours[target][q] += length;
     neighbours[p].clear();
