@@ -61,9 +61,9 @@ TEST_CASE("help and version") {
 TEST_CASE("help texts print the library's own defaults of the decision options") {
   const areamatch::MatcherParams defaults;
   using areamatch::detail::format_double;
-  const std::string agreement = "(default " + format_double(defaults.min_agreement);
-  const std::string walls = "(default " + format_double(defaults.gate_max_lower_walls) + ";";
-  const std::string overlap = "(default " + areamatch::detail::format_fixed(defaults.gate_min_overlap_m2, 0) + ";";
+  const std::string agreement = "(default " + format_double(defaults.decision.min_agreement);
+  const std::string walls = "(default " + format_double(defaults.decision.gate_max_lower_walls) + ";";
+  const std::string overlap = "(default " + areamatch::detail::format_fixed(defaults.decision.gate_min_overlap_m2, 0) + ";";
   for (const char* command : {"match", "warp", "assess", "merge", "eval", "calibrate"}) {
     const std::string help = run(std::string(command) + " --help").out;
     INFO(command);

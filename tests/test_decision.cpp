@@ -181,7 +181,7 @@ TEST_CASE("the rule: agreement gate or a sure model; min_p_correct rejects whate
   REQUIRE(plain.p_correct > 0.9);
   CHECK(plain.p_correct == doctest::Approx(p_correct(decision_features(plain), matcher.params.decision)));
 
-  matcher.params.min_agreement = 1.01;  // the gate refuses everything: the model alone accepts
+  matcher.params.decision.min_agreement = 1.01;  // the gate refuses everything: the model alone accepts
   const MatchResult by_model = matcher.match(robot.grid, building.layout);
   CHECK(by_model.ok);
   matcher.params.decision.accept_p_correct = 1.0;  // ... unless it must be certain
@@ -214,31 +214,31 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   r.evidence.forward_wall_agreement = 0.45;  // lab_b-like: the SLAM map's clutter unexplained
   r.evidence.overlap_m2 = 283.0;             // ... on a whole floor
   r.p_correct = 0.2;
-  CHECK(detail::passes_agreement_gate(r.evidence, params));
-  CHECK(detail::refusal(r, params, true).reason.empty());
+  CHECK(detail::passes_agreement_gate(r.evidence, params.decision));
+  CHECK(detail::refusal(r, params.decision, true).reason.empty());
   r.evidence.forward_wall_agreement = 0.8;  // both ways: the model alone, and it is not sure
   CHECK(lower_wall_agreement(r.evidence) == 0.8);
-  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params));
-  const std::string refused = detail::refusal(r, params, true).reason;
+  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params.decision));
+  const std::string refused = detail::refusal(r, params.decision, true).reason;
   CHECK(refused.find("gate_max_lower_walls 0.7") != std::string::npos);
   CHECK(refused.find("accept_p_correct 0.85") != std::string::npos);
   r.p_correct = 0.9;  // ... unless it is sure
-  CHECK(detail::refusal(r, params, true).reason.empty());
+  CHECK(detail::refusal(r, params.decision, true).reason.empty());
   r.p_correct = 0.2;
   MatcherParams always = params;
-  always.gate_max_lower_walls = 1.01;  // the rule before 2026-12-03
-  CHECK(detail::refusal(r, always, true).reason.empty());
+  always.decision.gate_max_lower_walls = 1.01;  // the rule before 2026-12-03
+  CHECK(detail::refusal(r, always.decision, true).reason.empty());
   r.evidence.forward_wall_agreement = std::numeric_limits<double>::quiet_NaN();  // not measured: lower 0
   CHECK(lower_wall_agreement(r.evidence) == 0.0);
-  CHECK(detail::passes_agreement_gate(r.evidence, params));
+  CHECK(detail::passes_agreement_gate(r.evidence, params.decision));
   // The paper's preset answers whatever the walls and the overlap.
-  CHECK(MatcherParams::paper().gate_max_lower_walls > 1.0);
-  CHECK(MatcherParams::paper().gate_min_overlap_m2 == 0.0);
+  CHECK(MatcherParams::paper().decision.gate_max_lower_walls > 1.0);
+  CHECK(MatcherParams::paper().decision.gate_min_overlap_m2 == 0.0);
   MatcherParams bad;
-  bad.gate_max_lower_walls = -0.1;
+  bad.decision.gate_max_lower_walls = -0.1;
   CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_max_lower_walls"), parameter_error);
   bad = params;
-  bad.gate_min_overlap_m2 = -1.0;
+  bad.decision.gate_min_overlap_m2 = -1.0;
   CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_min_overlap_m2"), parameter_error);
 }
 
@@ -254,18 +254,18 @@ TEST_CASE("the agreement gate needs enough shared free space: walls that agree o
   r.evidence.forward_wall_agreement = 0.31;
   r.evidence.overlap_m2 = 42.9;
   r.p_correct = 0.09;
-  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params));
-  const std::string refused = detail::refusal(r, params, true).reason;
+  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params.decision));
+  const std::string refused = detail::refusal(r, params.decision, true).reason;
   CHECK(refused.find("gate_min_overlap_m2 100") != std::string::npos);
   CHECK(refused.find("42.9") != std::string::npos);
   r.p_correct = 0.9;  // the model may still accept it alone
-  CHECK(detail::refusal(r, params, true).reason.empty());
+  CHECK(detail::refusal(r, params.decision, true).reason.empty());
   r.p_correct = 0.09;
   MatcherParams any = params;
-  any.gate_min_overlap_m2 = 0.0;  // the rule before 2026-12-04
-  CHECK(detail::refusal(r, any, true).reason.empty());
+  any.decision.gate_min_overlap_m2 = 0.0;  // the rule before 2026-12-04
+  CHECK(detail::refusal(r, any.decision, true).reason.empty());
   r.evidence.overlap_m2 = 231.0;  // the least any right answer through the gate shares on the real maps
-  CHECK(detail::passes_agreement_gate(r.evidence, params));
+  CHECK(detail::passes_agreement_gate(r.evidence, params.decision));
 }
 
 TEST_CASE("the turn margin: a right answer lies better than its own quarter turns and mirror images") {

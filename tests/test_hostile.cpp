@@ -74,7 +74,7 @@ TEST_CASE("NaN, infinite, zero and negative parameters are refused with the para
   }
   for (double v : {std::nan(""), -0.5}) {
     Matcher<> matcher;
-    matcher.params.min_score = v;
+    matcher.params.decision.min_score = v;
     CHECK_THROWS_WITH_AS(matcher.match(grid, grid), doctest::Contains("min_score"), parameter_error);
     VoronoiSegmenter segmenter;
     segmenter.params.areas.min_area_m2 = v;

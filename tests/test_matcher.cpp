@@ -319,7 +319,7 @@ TEST_CASE("maps of different buildings do not crash and score lower than the tru
   CHECK(wrong.rejection != Rejection::none);
   CHECK(wrong.rejection != Rejection::no_answer);
   CHECK(wrong.reason.find(wrong.rejection == Rejection::different_places ? "different places: " : "not sure: ") == 0);
-  CHECK(wrong.evidence.agreement < matcher.params.min_agreement);
+  CHECK(wrong.evidence.agreement < matcher.params.decision.min_agreement);
   CHECK(wrong.p_correct < 0.5);
   CHECK(right.p_correct > 0.5);
   CHECK(right.evidence.agreement > 0.95);
@@ -876,7 +876,7 @@ TEST_CASE("prepared maps: the same results as matching the grids, bit for bit; a
   other.params.coarse_cell_m *= 2.0;
   CHECK_THROWS_WITH_AS(other.match(source, dest), doctest::Contains("prepared by a matcher with other"), parameter_error);
   other = matcher;
-  other.params.min_agreement = 0.5;  // the decision is not part of a prepared map
+  other.params.decision.min_agreement = 0.5;  // the decision is not part of a prepared map
   CHECK_NOTHROW(other.match(source, dest));
 
   // A map without areas prepares, and matching it says why it cannot.
@@ -1043,7 +1043,7 @@ TEST_CASE("a refusal says 'different places' only when the evidence is against, 
   // A right answer the evidence does not carry (Intel's: agreement 0.77, p_correct 0.04): not sure,
   // and nothing says the maps are of different buildings.
   result.p_correct = 0.04;
-  detail::Refusal r = detail::refusal(result, params, true);
+  detail::Refusal r = detail::refusal(result, params.decision, true);
   CHECK(r.kind == Rejection::not_sure);
   CHECK(r.reason.find("not sure: ") == 0);
   CHECK(r.reason.find("same building") == std::string::npos);
@@ -1051,33 +1051,33 @@ TEST_CASE("a refusal says 'different places' only when the evidence is against, 
   CHECK(r.reason.find("it may be another building, or this one mapped too differently") != std::string::npos);
   // The model all but sure it is wrong: different places.
   result.p_correct = 0.5 * params.decision.different_places_p;
-  r = detail::refusal(result, params, true);
+  r = detail::refusal(result, params.decision, true);
   CHECK(r.kind == Rejection::different_places);
   CHECK(r.reason.find("different places: ") == 0);
   CHECK(r.reason.find("< different_places_p") != std::string::npos);
   // A whole-map score below min_score: different places, whatever the model.
   result.p_correct = 0.5;
-  result.score = 0.5 * params.min_score;
-  r = detail::refusal(result, params, true);
+  result.score = 0.5 * params.decision.min_score;
+  r = detail::refusal(result, params.decision, true);
   CHECK(r.kind == Rejection::different_places);
   result.score = 0.6;
   // The maps agree but the gate is closed (walls agree both ways) and the model is not sure: not sure.
   result.evidence.agreement = 0.9;
   result.evidence.forward_wall_agreement = result.evidence.reverse_wall_agreement = 0.9;
-  r = detail::refusal(result, params, true);
+  r = detail::refusal(result, params.decision, true);
   CHECK(r.kind == Rejection::not_sure);
   CHECK(r.reason.find("not sure: the maps agree") == 0);
   // A close rival: not sure, even with a model that would accept.
   MatcherParams strict = params;
-  strict.min_confidence = 0.05;
+  strict.decision.min_confidence = 0.05;
   result.p_correct = 0.99;
   result.confidence = 0.01;
-  r = detail::refusal(result, strict, true);
+  r = detail::refusal(result, strict.decision, true);
   CHECK(r.kind == Rejection::not_sure);
   CHECK(r.reason.find("not sure: ambiguous") == 0);
   // Accepted: no refusal.
   result.confidence = 0.2;
-  r = detail::refusal(result, strict, true);
+  r = detail::refusal(result, strict.decision, true);
   CHECK(r.reason.empty());
   CHECK(r.kind == Rejection::none);
   // No answer at all: a map without areas.

@@ -33,8 +33,8 @@ BentCase bent_case(std::uint64_t seed, double bend_m, double wavelength_m, doubl
   matcher.segmenter.params.with_door_width(0.9);
   // The warp is judged here, not the decision: a strongly bent map's right answer is taken
   // whatever the agreement (it is checked against the truth below).
-  matcher.params.min_agreement = 0.0;
-  matcher.params.gate_max_lower_walls = 2.0;
+  matcher.params.decision.min_agreement = 0.0;
+  matcher.params.decision.gate_max_lower_walls = 2.0;
   const AreaGraph source = matcher.segmenter.segment(c.robot.grid), dest = matcher.segmenter.segment(c.building.layout);
   c.match = matcher.match(c.robot.grid, source, c.building.layout, dest);
   return c;

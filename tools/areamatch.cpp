@@ -606,9 +606,9 @@ std::string with_decision_defaults(std::string text) {
   // Whole numbers as such (format_double's shortest form of 100 is 1e+02).
   auto plain = [](double v) { return v == std::floor(v) && std::abs(v) < 1e9 ? format_fixed(v, 0) : format_double(v); };
   const std::pair<std::string, std::string> values[] = {
-      {"{min_agreement}", plain(defaults.min_agreement)},
-      {"{gate_max_lower_walls}", plain(defaults.gate_max_lower_walls)},
-      {"{gate_min_overlap_m2}", plain(defaults.gate_min_overlap_m2)},
+      {"{min_agreement}", plain(defaults.decision.min_agreement)},
+      {"{gate_max_lower_walls}", plain(defaults.decision.gate_max_lower_walls)},
+      {"{gate_min_overlap_m2}", plain(defaults.decision.gate_min_overlap_m2)},
       {"{accept_p_correct}", plain(defaults.decision.accept_p_correct)}};
   for (const auto& [key, value] : values) {
     for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size())) {
@@ -682,7 +682,7 @@ std::string acceptance_line(const areamatch::MatchResult& result, const areamatc
     return "accepted: p_correct " + format_fixed(result.p_correct, 3) + " >= " + format_double(params.decision.accept_p_correct);
   }
   return "accepted by the agreement: agreement " + format_fixed(result.evidence.agreement, 3) + " >= --min-agreement " +
-         format_double(params.min_agreement) + " (p_correct " + format_fixed(result.p_correct, 3) + " is below " +
+         format_double(params.decision.min_agreement) + " (p_correct " + format_fixed(result.p_correct, 3) + " is below " +
          format_double(params.decision.accept_p_correct) + ": the model alone would not have accepted it)";
 }
 
@@ -1507,11 +1507,11 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   areamatch::DecisionParams base;
   base.accept_p_correct = args.fraction("accept-p").value_or(base.accept_p_correct);
   base.validate();
-  const double gate = args.fraction("min-agreement").value_or(areamatch::MatcherParams{}.min_agreement);
+  const double gate = args.fraction("min-agreement").value_or(areamatch::DecisionParams{}.min_agreement);
   const double gate_walls =
-      args.number("gate-max-lower-walls", false, true).value_or(areamatch::MatcherParams{}.gate_max_lower_walls);
+      args.number("gate-max-lower-walls", false, true).value_or(areamatch::DecisionParams{}.gate_max_lower_walls);
   const double gate_overlap =
-      args.number("gate-min-overlap", false, true).value_or(areamatch::MatcherParams{}.gate_min_overlap_m2);
+      args.number("gate-min-overlap", false, true).value_or(areamatch::DecisionParams{}.gate_min_overlap_m2);
   std::vector<CalibrationRow> rows;
   areamatch_cli::MapRoles roles;
   for (const auto& path : args.positional()) {

@@ -426,7 +426,7 @@ class Matcher {
 
     detail::report(progress, "check");
     detail::describe_answer(params, source, dest, source_data, dest_data, edges, selected, result);
-    return finish(detail::refusal(result, params, selected.comparable_scores));
+    return finish(detail::refusal(result, params.decision, selected.comparable_scores));
   }
 };
 

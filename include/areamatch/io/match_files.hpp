@@ -43,10 +43,10 @@ struct MapPairOptions {
   std::optional<double> min_score;            ///< reject below this whole-map score
   std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
   /// the agreement accepts alone only where the lower wall agreement is at most this
-  /// (`MatcherParams::gate_max_lower_walls`; above 1: wherever)
+  /// (`DecisionParams::gate_max_lower_walls`; above 1: wherever)
   std::optional<double> gate_max_lower_walls;
   /// the agreement accepts alone only on at least this much shared free space, m²
-  /// (`MatcherParams::gate_min_overlap_m2`; 0: whatever the overlap)
+  /// (`DecisionParams::gate_min_overlap_m2`; 0: whatever the overlap)
   std::optional<double> gate_min_overlap_m2;
   std::optional<double> min_p_correct;        ///< reject below this p_correct (match/decision.hpp)
   bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
@@ -97,10 +97,10 @@ inline void apply_match_options(MatcherParams& params, const MapPairOptions& opt
   if (options.allow_reflection) params.allow_reflection = *options.allow_reflection;
   if (options.threads) params.threads = *options.threads;
   if (options.k) params.k = *options.k;
-  if (options.min_score) params.min_score = *options.min_score;
-  if (options.min_agreement) params.min_agreement = *options.min_agreement;
-  if (options.gate_max_lower_walls) params.gate_max_lower_walls = *options.gate_max_lower_walls;
-  if (options.gate_min_overlap_m2) params.gate_min_overlap_m2 = *options.gate_min_overlap_m2;
+  if (options.min_score) params.decision.min_score = *options.min_score;
+  if (options.min_agreement) params.decision.min_agreement = *options.min_agreement;
+  if (options.gate_max_lower_walls) params.decision.gate_max_lower_walls = *options.gate_max_lower_walls;
+  if (options.gate_min_overlap_m2) params.decision.gate_min_overlap_m2 = *options.gate_min_overlap_m2;
   if (options.min_p_correct) params.decision.min_p_correct = *options.min_p_correct;
 }
 

@@ -1,16 +1,15 @@
 #pragma once
 /// \file match/acceptance.hpp
-/// The rule that sets `MatchResult::ok` (docs/matching.md, "the decision"): an answer is refused
-/// when its whole-map score is below `min_score`, when the maps agree too little and the
-/// calibrated model is not sure (`min_agreement`, `decision.accept_p_correct`; the agreement
-/// alone does not do where the walls agree both ways, `gate_max_lower_walls`, or on little shared
-/// free space, `gate_min_overlap_m2`), when the model
-/// finds it too likely wrong (`decision.min_p_correct`), or when a rival is too close
-/// (`min_confidence`).
+/// Applies the rule that sets `MatchResult::ok`, whose thresholds and model are `DecisionParams`
+/// (match/decision.hpp; docs/matching.md, "the decision"): an answer is refused when its whole-map
+/// score is below `min_score`, when the maps agree too little and the calibrated model is not sure
+/// (`min_agreement`, `accept_p_correct`; the agreement alone does not do where the walls agree both
+/// ways, `gate_max_lower_walls`, or on little shared free space, `gate_min_overlap_m2`), when the
+/// model finds it too likely wrong (`min_p_correct`), or when a rival is too close
+/// (`min_confidence`); and words each refusal.
 
 #include "../detail/format.hpp"
 #include "decision.hpp"
-#include "params.hpp"
 #include "result.hpp"
 
 #include <string>
@@ -21,9 +20,9 @@ namespace areamatch::detail {
 /// (`min_agreement`), one map's walls are largely unexplained by the other's
 /// (`gate_max_lower_walls`), and they share enough free space for that to mean something
 /// (`gate_min_overlap_m2`).
-inline bool passes_agreement_gate(const MatchEvidence& evidence, const MatcherParams& params) {
-  return evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls &&
-         evidence.overlap_m2 >= params.gate_min_overlap_m2;
+inline bool passes_agreement_gate(const MatchEvidence& evidence, const DecisionParams& rule) {
+  return evidence.agreement >= rule.min_agreement && lower_wall_agreement(evidence) <= rule.gate_max_lower_walls &&
+         evidence.overlap_m2 >= rule.gate_min_overlap_m2;
 }
 
 /// A refusal: its reason (empty when accepted) and what it says of the maps.
@@ -35,63 +34,63 @@ struct Refusal {
 /// Why the answer in `result` (margins, evidence and p_correct measured) is refused, and whether
 /// that says "different places" or "not sure"; an empty reason when it is accepted.
 /// `score_gate`: its score is on the whole-map scale that `min_score` applies to.
-inline Refusal refusal(const MatchResult& result, const MatcherParams& params, bool score_gate) {
+inline Refusal refusal(const MatchResult& result, const DecisionParams& rule, bool score_gate) {
   const MatchEvidence& evidence = result.evidence;
   const std::string p_text = "p_correct " + format_fixed(result.p_correct, 3);
   // Said of a refusal whose model all but rules the answer out, and of one it does not.
-  const bool model_against = result.p_correct < params.decision.different_places_p;
+  const bool model_against = result.p_correct < rule.different_places_p;
   const Rejection weak = model_against ? Rejection::different_places : Rejection::not_sure;
   const std::string weak_words = model_against ? "different places: " : "not sure: ";
   const std::string unsure_tail =
       model_against ? "" : "; it may be another building, or this one mapped too differently (clutter, bends, a partial map)";
-  if (score_gate && result.score < params.min_score) {
+  if (score_gate && result.score < rule.min_score) {
     return {"different places: best whole-map score " + format_fixed(result.score, 3) + " is below min_score " +
-                format_double(params.min_score) + ": the maps do not match",
+                format_double(rule.min_score) + ": the maps do not match",
             Rejection::different_places};
   }
-  const bool model_sure = result.p_correct >= params.decision.accept_p_correct;
-  if (evidence.agreement < params.min_agreement && !model_sure) {
+  const bool model_sure = result.p_correct >= rule.accept_p_correct;
+  if (evidence.agreement < rule.min_agreement && !model_sure) {
     return {weak_words + "the maps agree too little under the best transform to accept it: agreement " +
-                format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(params.min_agreement) +
+                format_fixed(evidence.agreement, 3) + " < min_agreement " + format_double(rule.min_agreement) +
                 " (the destination's walls near the source's free space explained: " +
                 format_fixed(evidence.reverse_wall_agreement, 3) + ", the source's near the destination's: " +
                 format_fixed(evidence.forward_wall_agreement, 3) + ", free-space IoU " + format_fixed(evidence.free_iou, 3) +
-                "; " + p_text + " < accept_p_correct " + format_double(params.decision.accept_p_correct) +
-                (model_against ? " and < different_places_p " + format_double(params.decision.different_places_p) : "") + ")" +
+                "; " + p_text + " < accept_p_correct " + format_double(rule.accept_p_correct) +
+                (model_against ? " and < different_places_p " + format_double(rule.different_places_p) : "") + ")" +
                 unsure_tail,
             weak};
   }
   // Agreement enough, but on too little shared free space: the gate is closed, the model decides.
-  if (evidence.agreement >= params.min_agreement && lower_wall_agreement(evidence) <= params.gate_max_lower_walls &&
-      !passes_agreement_gate(evidence, params) && !model_sure) {
+  if (evidence.agreement >= rule.min_agreement && lower_wall_agreement(evidence) <= rule.gate_max_lower_walls &&
+      !passes_agreement_gate(evidence, rule) && !model_sure) {
     return {"not sure: the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
-                format_double(params.min_agreement) + ") on too little shared free space to go on that alone (" +
-                format_fixed(evidence.overlap_m2, 1) + " m² < gate_min_overlap_m2 " + format_fixed(params.gate_min_overlap_m2, 0) +
+                format_double(rule.min_agreement) + ") on too little shared free space to go on that alone (" +
+                format_fixed(evidence.overlap_m2, 1) + " m² < gate_min_overlap_m2 " + format_fixed(rule.gate_min_overlap_m2, 0) +
                 "), where the calibrated model judges alone, and it is not sure enough: " + p_text + " < accept_p_correct " +
-                format_double(params.decision.accept_p_correct),
+                format_double(rule.accept_p_correct),
             Rejection::not_sure};
   }
   // Agreement enough, but the walls agree both ways too: the gate is closed, the model decides.
-  if (evidence.agreement >= params.min_agreement && !passes_agreement_gate(evidence, params) && !model_sure) {
+  if (evidence.agreement >= rule.min_agreement && !passes_agreement_gate(evidence, rule) && !model_sure) {
     return {"not sure: the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
-                format_double(params.min_agreement) + ") and their walls agree both ways (the lower " +
+                format_double(rule.min_agreement) + ") and their walls agree both ways (the lower " +
                 format_fixed(lower_wall_agreement(evidence), 3) + " > gate_max_lower_walls " +
-                format_double(params.gate_max_lower_walls) + "), where the calibrated model judges alone, and it is not sure " +
-                "enough: " + p_text + " < accept_p_correct " + format_double(params.decision.accept_p_correct) +
+                format_double(rule.gate_max_lower_walls) + "), where the calibrated model judges alone, and it is not sure " +
+                "enough: " + p_text + " < accept_p_correct " + format_double(rule.accept_p_correct) +
                 " (alike buildings agree like this too)",
             Rejection::not_sure};
   }
-  if (result.p_correct < params.decision.min_p_correct) {
+  if (result.p_correct < rule.min_p_correct) {
     return {weak_words + "the answer is too likely wrong: " + p_text + " < min_p_correct " +
-                format_double(params.decision.min_p_correct) + " (wall agreement " +
+                format_double(rule.min_p_correct) + " (wall agreement " +
                 format_fixed(evidence.forward_wall_agreement, 3) + " / " + format_fixed(evidence.reverse_wall_agreement, 3) +
                 ", rooms " + format_fixed(evidence.room_agreement, 3) + ", margin " + format_fixed(result.confidence, 3) +
                 ", overlap " + format_fixed(evidence.overlap_m2, 1) + " m²)",
             weak};
   }
-  if (result.confidence < params.min_confidence) {
+  if (result.confidence < rule.min_confidence) {
     return {"not sure: ambiguous: a different transform scores within " + format_fixed(result.confidence, 3) +
-                " of the best (min_confidence " + format_double(params.min_confidence) + ")",
+                " of the best (min_confidence " + format_double(rule.min_confidence) + ")",
             Rejection::not_sure};
   }
   return {};

@@ -70,10 +70,33 @@ struct DecisionFeatures {
   double operator[](std::string_view name) const { return values[index(name)]; }
 };
 
-/// A logistic model p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) and the acceptance rule:
-/// ok when p ≥ `accept_p_correct`, or agreement ≥ `MatcherParams::min_agreement` with the lower
-/// wall agreement ≤ `MatcherParams::gate_max_lower_walls`; and p ≥ `min_p_correct`.
+/// The accept/reject rule in one place: its thresholds and the logistic model
+/// p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) it reads. An answer is accepted (`MatchResult::ok`)
+/// when its whole-map score is at least `min_score`, p ≥ `accept_p_correct` or the agreement gate
+/// lets it through (agreement ≥ `min_agreement`, the lower wall agreement ≤ `gate_max_lower_walls`,
+/// at least `gate_min_overlap_m2` of shared free space), p ≥ `min_p_correct`, and no rival is
+/// within `min_confidence`. match/acceptance.hpp applies it and words each refusal.
 struct DecisionParams {
+  /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected.
+  double min_score = 0.25;
+  /// Below this `MatchEvidence::agreement` the answer is rejected unless the model is sure
+  /// (`accept_p_correct`); at or above it the agreement gate may accept it alone (below). 0.835:
+  /// every true pair of the first calibration scored 0.840 or more (docs/evaluation.md). Above 1
+  /// the gate never accepts and the model alone decides.
+  double min_agreement = 0.835;
+  /// The agreement gate accepts an answer the model is not sure of only where the lower of the two
+  /// wall agreements (the decision's `walls_worst`) is at most this: a map whose walls the other
+  /// cannot explain — a SLAM map's furniture and laser streaks against a plan — where the model
+  /// underrates right answers; where the walls agree both ways the model judges alone (alike
+  /// buildings agree like that too). Chosen by `areamatch calibrate --choose-rule` in its nested
+  /// cross-validation (docs/evaluation.md). Above 1: the gate whatever the walls.
+  double gate_max_lower_walls = 0.7;
+  /// The agreement gate also needs at least this much shared free space (`MatchEvidence::
+  /// overlap_m2`, destination m²): agreeing walls prove little on one room. 100 m² (a few rooms),
+  /// chosen as `gate_max_lower_walls` was (docs/evaluation.md). 0: the gate whatever the overlap.
+  double gate_min_overlap_m2 = 100.0;
+  /// Below this margin to a different or mirrored rival the answer is rejected.
+  double min_confidence = 0.0;
   /// Fitted by `areamatch calibrate` (l2 = 1) on the 7392 rows of `scripts/calibration_data.sh`
   /// (141 buildings: shared/pairs.json and its pairs of different buildings both ways,
   /// shared/handheld/pairs.json with and without reflection and its pairs of different places,
@@ -85,7 +108,7 @@ struct DecisionParams {
   std::array<double, DecisionFeatures::size> weights = {12.079, -1.785, 1.611, 2.541, 2.024,
                                                         -0.793, 5.543,  2.833, 9.905};  ///< `names` order
   /// An answer is accepted on the model alone at or above this, even when the maps' agreement is
-  /// below `MatcherParams::min_agreement`: the rule is "p_correct ≥ accept_p_correct, or agreement
+  /// below `min_agreement`: the rule is "p_correct ≥ accept_p_correct, or agreement
   /// ≥ min_agreement with the lower wall agreement ≤ gate_max_lower_walls". 0.85 is what
   /// `areamatch calibrate --choose-rule --max-false-accept 0.002` chooses from data (the fewest
   /// right answers rejected with at most 0.2 % of the wrong ones accepted, judged on
@@ -105,6 +128,11 @@ struct DecisionParams {
   double different_places_p = 0.01;
 
   void validate() const {
+    detail::require_non_negative(min_score, "DecisionParams::min_score");
+    detail::require_non_negative(min_agreement, "DecisionParams::min_agreement");
+    detail::require_non_negative(gate_max_lower_walls, "DecisionParams::gate_max_lower_walls");
+    detail::require_non_negative(gate_min_overlap_m2, "DecisionParams::gate_min_overlap_m2");
+    if (!std::isfinite(min_confidence)) throw parameter_error("DecisionParams::min_confidence must be finite");
     if (!std::isfinite(bias)) throw parameter_error("DecisionParams::bias must be finite");
     for (double w : weights) {
       if (!std::isfinite(w)) throw parameter_error("DecisionParams::weights must be finite");
@@ -122,7 +150,7 @@ struct DecisionParams {
 };
 
 /// The lower of the two wall agreements in [0, 1] (0 when not measured): the decision's
-/// `walls_worst`, and what limits the agreement gate (`MatcherParams::gate_max_lower_walls`).
+/// `walls_worst`, and what limits the agreement gate (`DecisionParams::gate_max_lower_walls`).
 inline double lower_wall_agreement(const MatchEvidence& e) {
   const double lower = std::min(e.forward_wall_agreement, e.reverse_wall_agreement);
   return std::isfinite(lower) ? std::clamp(lower, 0.0, 1.0) : 0.0;

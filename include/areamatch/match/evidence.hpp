@@ -1,7 +1,7 @@
 #pragma once
 /// \file match/evidence.hpp
 /// How much the two maps agree under one transform, measured several ways, so that whether an
-/// answer is good enough to accept can be decided (`MatcherParams::min_agreement`).
+/// answer is good enough to accept can be decided (`DecisionParams::min_agreement`).
 ///
 /// The whole-map score (share of the source's free-space edge lying on the destination's) picks
 /// the best transform well but does not say whether it is right: cluttered SLAM maps have edges

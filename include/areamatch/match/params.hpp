@@ -78,46 +78,13 @@ struct MatcherParams {
   /// centroid) count as the same answer when the confidence margin is computed.
   double different_rotation_rad = 3.0 * pi / 180.0;
   double different_translation_m = 1.0;
-  /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected (ok = false).
-  double min_score = 0.25;
-  /// The calibrated probability that the answer is right (match/decision.hpp), reported as
-  /// `MatchResult::p_correct`. An answer whose agreement is below `min_agreement` is still
-  /// accepted when p_correct ≥ `decision.accept_p_correct`; below `decision.min_p_correct` it is
-  /// rejected (off by default).
+  /// The accept/reject rule — its thresholds (`min_score`, `min_agreement`, the agreement gate's,
+  /// `accept_p_correct`, `min_p_correct`, `min_confidence`) and the calibrated model of
+  /// `MatchResult::p_correct` — in one place (match/decision.hpp; applied by match/acceptance.hpp).
   DecisionParams decision;
-  /// Below this `MatchEvidence::agreement` the result is rejected unless the model is sure
-  /// (`decision.accept_p_correct`); the refusal says "different places" or "not sure"
-  /// (`decision.different_places_p`).
-  /// Calibrated on the real pairs of shared/pairs.json, all 596 pairs of maps of different
-  /// buildings in shared/maps and three synthetic sets (docs/evaluation.md): every true pair
-  /// scored 0.840 or more; 2 of 2876 pairs of different buildings scored above 0.835 (at most 0.845).
-  /// Alone it rejects right answers of unseen buildings and hand-held scans (agreement 0.77-0.83):
-  /// `decision.accept_p_correct` lets the calibrated model accept those. Above 1 the gate never
-  /// accepts and the model alone decides (the CLI takes [0, 1]: 1 is that, but for a perfect agreement).
-  double min_agreement = 0.835;
-  /// The agreement gate (`min_agreement`) accepts an answer the model is not sure of only where
-  /// the lower of the two wall agreements (`MatchEvidence::forward_wall_agreement` and
-  /// `reverse_wall_agreement`, the decision's `walls_worst`) is at most this. The gate is for a
-  /// map whose walls the other cannot explain — a SLAM map's furniture and laser streaks against
-  /// a floor plan — where the model underrates right answers (lab_b's p_correct 0.09–0.14 cross-
-  /// validated, lower walls 0.42–0.43); where the walls agree both ways the model judges alone
-  /// (two alike buildings' partial maps agreed at 0.84 with lower walls 0.71–0.92). 0.7 is what
-  /// `areamatch calibrate --choose-rule` chooses from data, in all 141 folds of its nested
-  /// cross-validation (docs/evaluation.md). Above 1: the gate applies whatever the walls.
-  double gate_max_lower_walls = 0.7;
-  /// The agreement gate also needs at least this much shared free space (`MatchEvidence::
-  /// overlap_m2`, destination m²): agreeing walls prove little on one room. A hand-held scan of a
-  /// single office (F5_02, 43 m² shared) agreed at 0.874 with an apartment's scan, lower walls
-  /// 0.31; every right answer the gate lets through on the real maps shares 231 m² or more.
-  /// 100 m² (a few rooms) is what `areamatch calibrate --choose-rule` chooses from its grid
-  /// (0, 25, 50, 100) on all rows and in every fold of the nested cross-validation
-  /// (docs/evaluation.md). 0: the gate whatever the overlap.
-  double gate_min_overlap_m2 = 100.0;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
   /// the two wall agreements). A map confirmed on little of the other's free space is less certain.
   double agreement_iou_weight = 0.2;
-  /// Below this margin to a different or mirrored rival the result is rejected (ok = false).
-  double min_confidence = 0.0;
   /// Below this margin the result is flagged `ambiguous` (still ok): on real maps correct answers
   /// have come with margins as small as 0.002 (a SLAM map longer than its layout slides along
   /// the corridor), so rejecting them is the caller's call.
@@ -141,13 +108,13 @@ struct MatcherParams {
     p.hypotheses.min_area_overlap = 0.5;
     p.hypotheses.exact_overlap = true;
     p.refine = false;
-    p.min_score = 0.0;          // the paper has no rejection rule:
-    p.min_agreement = 0.0;
-    p.gate_max_lower_walls = 2.0;
-    p.gate_min_overlap_m2 = 0.0;
+    p.decision.min_score = 0.0;          // the paper has no rejection rule:
+    p.decision.min_agreement = 0.0;
+    p.decision.gate_max_lower_walls = 2.0;
+    p.decision.gate_min_overlap_m2 = 0.0;
     p.decision.min_p_correct = 0.0;
     p.decision.accept_p_correct = 1.0;
-    p.min_confidence = -1.0;    // it always answers
+    p.decision.min_confidence = -1.0;    // it always answers
     return p;
   }
 
@@ -174,15 +141,10 @@ struct MatcherParams {
     refinement.validate();
     detail::require_positive(different_rotation_rad, "MatcherParams::different_rotation_rad");
     detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");
-    detail::require_non_negative(min_score, "MatcherParams::min_score");
-    detail::require_non_negative(min_agreement, "MatcherParams::min_agreement");
-    detail::require_non_negative(gate_max_lower_walls, "MatcherParams::gate_max_lower_walls");
-    detail::require_non_negative(gate_min_overlap_m2, "MatcherParams::gate_min_overlap_m2");
     decision.validate();
     if (!(agreement_iou_weight >= 0.0 && agreement_iou_weight <= 1.0)) {
       throw parameter_error("MatcherParams::agreement_iou_weight must be in [0, 1]");
     }
-    if (!std::isfinite(min_confidence)) throw parameter_error("MatcherParams::min_confidence must be finite");
     correspondences.validate();
     detail::require_non_negative(ambiguity_margin, "MatcherParams::ambiguity_margin");
   }

@@ -38,7 +38,7 @@ struct MatchEvidence {
   /// Share of the common free space that lies in area pairs overlapping with IoU ≥ 0.5: whether
   /// the two segmentations cut the common part into the same rooms.
   double room_agreement = 0.0;
-  /// The number the decision uses (`MatcherParams::min_agreement`): (1 − w) · max(forward,
+  /// The number the decision uses (`DecisionParams::min_agreement`): (1 − w) · max(forward,
   /// reverse wall agreement) + w · free_iou, w = `MatcherParams::agreement_iou_weight`. Where
   /// both maps have been, one map's walls must all be walls of the other (the plainer map's: a
   /// layout's walls are in a SLAM map, not the SLAM map's furniture in the layout); and the more

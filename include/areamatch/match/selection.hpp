@@ -73,7 +73,7 @@ struct Selected {
   /// Best first; the first is the answer, the others its rivals for the margins. Empty: no answer.
   std::vector<ScoredTransform> finalists;
   /// The finalists' scores rank transforms of different clusters on one scale in [0, 1]: the
-  /// margins are their differences and `MatcherParams::min_score` applies to the answer's. Else
+  /// margins are their differences and `DecisionParams::min_score` applies to the answer's. Else
   /// the matcher measures the margins by free-space IoU and `min_score` does not apply.
   bool comparable_scores = false;
   /// The finalists were refined by ICP (`MatcherParams::refinement`): the answer's quarter turns

@@ -31,7 +31,7 @@ struct MergeParams {
   /// the smallest wrong answer that matters, a slide by one room (≥ 2.5 m).
   double max_residual_m = 1.0;
   /// A map joined to the others by one accepted match only, and that accepted by the calibrated
-  /// model alone (not through the agreement gate: `MatcherParams::min_agreement`,
+  /// model alone (not through the agreement gate: `DecisionParams::min_agreement`,
   /// `gate_max_lower_walls`), must reach this p_correct:
   /// nothing else corroborates it, and a merge tries every pair, so one false accept would place
   /// a map of another building. 0.9: the model-alone threshold of the decision until 2026-12-01
