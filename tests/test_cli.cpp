@@ -128,6 +128,9 @@ TEST_CASE("segment writes pictures, labels and JSON; an empty map exits 1") {
   const Run old_spelling = run("segment " + dir + "/layout.yaml --json " + dir + "/graph3.json");
   CHECK(old_spelling.status == 2);
   CHECK(old_spelling.out.find("write it to a file with --graph " + dir + "/graph3.json") != std::string::npos);
+  const Run old_order = run("segment --json " + dir + "/graph3.json " + dir + "/layout.yaml");
+  CHECK(old_order.status == 2);
+  CHECK(old_order.out.find("write it to a file with --graph " + dir + "/graph3.json") != std::string::npos);
 
   areamatch_test::write_bytes(dir + "/walls.pgm", std::string("P5 3 3 255\n") + std::string(9, '\0'));
   const Run empty = run("segment " + dir + "/walls.pgm");

@@ -556,9 +556,12 @@ int run_segment(const std::vector<std::string>& tokens) {
   }
   make_output_folders(args, {"png", "svg", "labels", "graph"});
   // `--json` was once `--json OUT.json`; as everywhere else it is now a flag (stdout).
-  if (args.flag("json") && args.positional().size() == 2 && ends_with(args.positional()[1], ".json")) {
-    throw UsageError("--json prints the graph on stdout and takes no file; write it to a file with --graph " +
-                     args.positional()[1]);
+  if (args.flag("json") && args.positional().size() == 2) {
+    for (const std::string& given : args.positional()) {
+      if (ends_with(given, ".json")) {
+        throw UsageError("--json prints the graph on stdout and takes no file; write it to a file with --graph " + given);
+      }
+    }
   }
   args.expect_positional(1, "MAP");
   const auto segmenter = segmenter_from(args);
