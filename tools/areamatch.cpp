@@ -59,10 +59,6 @@ using areamatch_cli::Rule;
 using areamatch_cli::ReliabilityBin;
 using areamatch_cli::UsageError;
 
-bool ends_with(const std::string& text, const std::string& end) {
-  return text.size() >= end.size() && text.compare(text.size() - end.size(), end.size(), end) == 0;
-}
-
 const std::set<std::string> kMapFlags = {"negate", "help"};
 const std::set<std::string> kMapOptions = {"resolution", "free-thresh", "occupied-thresh"};
 
@@ -558,7 +554,7 @@ int run_segment(const std::vector<std::string>& tokens) {
   // `--json` was once `--json OUT.json`; as everywhere else it is now a flag (stdout).
   if (args.flag("json") && args.positional().size() == 2) {
     for (const std::string& given : args.positional()) {
-      if (ends_with(given, ".json")) {
+      if (std::filesystem::path(given).extension() == ".json") {
         throw UsageError("--json prints the graph on stdout and takes no file; write it to a file with --graph " + given);
       }
     }

@@ -722,10 +722,9 @@ void bind_merge_result(py::class_<MergeRun>& merge_result) {
                              [](const MergeRun& r) {
                                py::list out;
                                for (const auto& e : r.result.edges) {
-                                 auto name = [&](std::size_t i) { return i < r.names.size() ? r.names[i] : "map " + std::to_string(i); };
                                  py::dict d;
-                                 d["from"] = name(e.source);
-                                 d["to"] = name(e.dest);
+                                 d["from"] = am::merge_map_name(r.names, e.source);
+                                 d["to"] = am::merge_map_name(r.names, e.dest);
                                  d["ok"] = e.match.ok;
                                  d["p_correct"] = number_or_none(e.match.p_correct);
                                  d["agreement"] = number_or_none(e.match.evidence.agreement);

@@ -251,7 +251,7 @@ inline std::string merge_result_json(const MergeResult& r, const std::vector<std
                                      const std::vector<std::pair<std::string, double>>& extra_timings = {}) {
   using detail::json_number;
   using detail::json_quote;
-  auto name = [&](std::size_t i) { return json_quote(i < names.size() ? names[i] : "map " + std::to_string(i)); };
+  auto name = [&](std::size_t i) { return json_quote(merge_map_name(names, i)); };
   std::string out = "{\"ok\": " + std::string(r.ok ? "true" : "false") + ", \"reference\": " + name(r.reference) + ", \"maps\": [";
   for (std::size_t i = 0; i < r.maps.size(); ++i) {
     const MergedMap& m = r.maps[i];

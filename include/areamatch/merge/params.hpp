@@ -13,6 +13,11 @@
 
 namespace areamatch {
 
+/// How a merge names map i in its messages, JSON and picture legend: `names[i]` when given, else "map i".
+inline std::string merge_map_name(const std::vector<std::string>& names, std::size_t i) {
+  return i < names.size() ? names[i] : "map " + std::to_string(i);
+}
+
 /// Which pairs of maps are matched.
 enum class MergeStrategy {
   all_pairs,        ///< every pair: loops of matches check each other (the default)
@@ -76,7 +81,7 @@ struct MergeParams {
     if (non_rigid) warp.validate();
     double_walls.validate();
   }
-  std::string name(std::size_t i) const { return names.empty() ? "map " + std::to_string(i) : names[i]; }
+  std::string name(std::size_t i) const { return merge_map_name(names, i); }
 };
 
 }  // namespace areamatch

@@ -8,6 +8,7 @@
 #include "../image.hpp"
 #include "../match/occupied_walls.hpp"
 #include "../render.hpp"
+#include "params.hpp"
 #include "result.hpp"
 
 #include <algorithm>
@@ -80,7 +81,7 @@ inline RgbImage render_merge(const MergeResult& result, const std::vector<const 
   std::vector<detail::BitRaster> kept(maps.size());
   std::vector<detail::LegendEntry> legend;
   for (std::size_t m = 0; m < maps.size(); ++m) {
-    const std::string name = m < names.size() ? names[m] : "map " + std::to_string(m);
+    const std::string name = merge_map_name(names, m);
     const bool placed = m < result.maps.size() && result.maps[m].placed;
     legend.push_back({placed ? map_color(static_cast<int>(m)) : colors.unknown, placed ? name : name + " (not placed)"});
     if (!placed) continue;
