@@ -625,6 +625,76 @@ TEST_CASE("features and pairing follow the paper's formulas") {
   CHECK(mutual_nearest_pairs(cost, 3).size() == 9);
 }
 
+namespace {
+/// A user feature without a bound key: the pairing must compare it everywhere.
+struct PassageCount {
+  using descriptor_type = double;
+  descriptor_type describe(const AreaGraph&, const Area& area) const { return static_cast<double>(area.passages.size()); }
+  double cost(double a, double b) const { return relative_difference(a, b); }
+};
+
+/// Random descriptors of `count` areas, coarsely rounded so that many costs tie.
+template <class Set>
+typename Set::descriptors_type random_descriptors(detail::Random& random, std::size_t count) {
+  typename Set::descriptors_type out;
+  auto rounded = [&](double low, double high) { return std::round(random.uniform(low, high) * 2.0) / 2.0; };
+  auto segment = [&](double length) { return AreaSegment{Eigen::Vector2d::Zero(), Eigen::Vector2d(length, 0.0)}; };
+  for (std::size_t i = 0; i < count; ++i) {
+    std::get<0>(out).push_back(rounded(0.0, 60.0));
+    PassageDistances::descriptor_type passages;
+    const int k = random.integer(0, 4);
+    for (int p = 0; p < k * (k - 1) / 2; ++p) passages.lengths.push_back(rounded(0.5, 12.0));
+    std::sort(passages.lengths.begin(), passages.lengths.end());
+    for (double length : passages.lengths) passages.pairs.push_back(segment(length));
+    passages.hull_diameter = segment(rounded(0.0, 15.0));
+    std::get<1>(out).push_back(passages);
+    std::get<2>(out).push_back(passages.hull_diameter);
+    if constexpr (Set::size == 4) std::get<3>(out).push_back(static_cast<double>(random.integer(0, 3)));
+  }
+  return out;
+}
+
+template <class Set, std::size_t N>
+void check_pruned_pairing(const Set& features, const std::array<double, N>& weights, std::uint64_t seed) {
+  detail::Random random(seed);
+  const std::size_t rows = static_cast<std::size_t>(random.integer(1, 120)), cols = static_cast<std::size_t>(random.integer(1, 120));
+  const auto source = random_descriptors<Set>(random, rows), dest = random_descriptors<Set>(random, cols);
+  for (std::size_t k : {std::size_t{1}, std::size_t{3}, std::size_t{10}, std::size_t{200}}) {
+    const auto full = mutual_nearest_pairs(weighted_cost(features.costs(source, dest), weights), k);
+    for (unsigned threads : {1u, 2u}) {
+      const auto pruned = mutual_nearest_pairs(features, source, dest, weights, k, threads);
+      REQUIRE(pruned.size() == full.size());
+      for (std::size_t p = 0; p < full.size(); ++p) {
+        CHECK(pruned[p].source == full[p].source);
+        CHECK(pruned[p].dest == full[p].dest);
+        CHECK(pruned[p].cost == full[p].cost);  // bit for bit
+      }
+    }
+  }
+}
+}  // namespace
+
+TEST_CASE("mutual pairs searched along the bound keys: exactly the full cost matrix's, bit for bit") {
+  // Keys prune the search; the pairs, their order and their costs must not change. Ties are
+  // frequent (rounded descriptors), k runs past the area counts, and a keyless user feature,
+  // weights of zero and a key-only set are all covered.
+  for (std::uint64_t seed = 1; seed <= 12; ++seed) {
+    CAPTURE(seed);
+    check_pruned_pairing(PaperFeatures{}, PaperWeights{}.values, seed);
+    check_pruned_pairing(PaperFeatures{}, std::array<double, 3>{0.0, 1.0, 0.0}, seed);
+    check_pruned_pairing(PaperFeatures{}, std::array<double, 3>{0.5, 0.0, 0.5}, seed);
+    check_pruned_pairing(FeatureSet<AreaSize, PassageDistances, HullDiameter, PassageCount>{},
+                         std::array<double, 4>{0.1, 0.1, 0.5, 0.3}, seed);
+  }
+  CHECK(feature_has_bound_key_v<AreaSize>);
+  CHECK(feature_has_bound_key_v<HullDiameter>);
+  CHECK_FALSE(feature_has_bound_key_v<PassageDistances>);
+  CHECK_FALSE(feature_has_bound_key_v<PassageCount>);
+  CHECK_THROWS_AS(mutual_nearest_pairs(PaperFeatures{}, {}, {}, PaperWeights{}.values, 0), parameter_error);
+  CHECK_THROWS_AS(mutual_nearest_pairs(PaperFeatures{}, {}, {}, std::array<double, 3>{0.5, 0.5, 0.5}, 3), parameter_error);
+  CHECK(mutual_nearest_pairs(PaperFeatures{}, {}, {}, PaperWeights{}.values, 3).empty());
+}
+
 TEST_CASE("pose clustering: its binned leader search gives exactly a linear scan's clusters") {
   // PoseClusterer compares each hypothesis only with the leaders in neighbouring (rotation,
   // translation) bins; a linear scan compares it with every leader, earliest first. Clumps of

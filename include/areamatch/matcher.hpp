@@ -393,8 +393,8 @@ class Matcher {
     std::vector<Cluster> clusters;
     auto find_clusters = [&](const MapData& source_data, const MapData& dest_data, unsigned threads) {
       detail::timed(result.timings.features_s, [&] {
-        pairs = mutual_nearest_pairs(weighted_cost(features.costs(source_data.descriptors, dest_data.descriptors), weights.values),
-                                     params.k);
+        pairs = mutual_nearest_pairs(features, source_data.descriptors, dest_data.descriptors, weights.values, params.k,
+                                     threads);
       });
       result.statistics.mutual_pairs = pairs.size();
       hypotheses = detail::timed(result.timings.hypotheses_s, [&] {

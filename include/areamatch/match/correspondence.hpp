@@ -112,16 +112,18 @@ inline std::vector<MatchedAreaPair> area_correspondences(const std::vector<std::
         on_walls = local_on_walls;
       }
     }
-    std::vector<int> counts(dest.areas.size(), 0);
+    std::vector<int> landed;  // the destination areas of its cells (a few, not all of them)
     const Eigen::Affine2d to_cell = dest_raster.cell_from_world * T.affine();
     for (int index : source_raster.area_cells[i]) {
       const int label = dest_raster.label_at_cell(to_cell * source_raster.centres[static_cast<std::size_t>(index)]);
-      if (label >= 0) ++counts[static_cast<std::size_t>(label)];
+      if (label >= 0) landed.push_back(label);
     }
-    const auto it = std::max_element(counts.begin(), counts.end());  // the lowest id on ties
-    if (it == counts.end() || *it == 0) return;
-    const std::size_t j = static_cast<std::size_t>(it - counts.begin());
-    const double common_m2 = *it * source_raster.cell_area() * scale2;
+    const auto counts = counted(landed);
+    const auto it = std::max_element(counts.begin(), counts.end(),  // the lowest id on ties
+                                     [](const auto& a, const auto& b) { return a.second < b.second; });
+    if (it == counts.end()) return;
+    const std::size_t j = static_cast<std::size_t>(it->first);
+    const double common_m2 = static_cast<double>(it->second) * source_raster.cell_area() * scale2;
     const double smaller = std::min(source.areas[i].size_m2 * scale2, dest.areas[j].size_m2);
     const double overlap = smaller > 0.0 ? std::min(1.0, common_m2 / smaller) : 0.0;
     if (overlap < params.min_overlap) return;

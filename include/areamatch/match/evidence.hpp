@@ -109,16 +109,22 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   e.reverse_wall_agreement = reverse;
   e.occupied_wall_agreement = detail::occupied_wall_agreement(edges.source_occupied, edges.dest_occupied, T_dest_source);
 
-  // Cell overlaps per area pair, from the source cells.
-  const std::size_t ns = source.areas.size(), nd = dest.areas.size();
-  std::vector<std::size_t> overlap(ns * nd, 0);
+  // Cell overlaps per area pair, from the source cells, area by area: an area meets a few of the
+  // other map's, so the pairs are listed per area (destination ids ascending), not held as an
+  // areas_source × areas_dest table.
+  const std::size_t ns = source.areas.size();
+  std::vector<std::vector<std::pair<int, std::size_t>>> overlap(ns);  // per source area: (j, cells)
   std::size_t hits = 0;
   const Eigen::Affine2d to_cell = dest_raster.cell_from_world * T_dest_source.affine();
-  for (std::size_t k = 0; k < source_raster.centres.size(); ++k) {
-    const int j = dest_raster.label_at_cell(to_cell * source_raster.centres[k]);
-    if (j < 0) continue;
-    ++hits;
-    ++overlap[static_cast<std::size_t>(source_raster.centre_labels[k]) * nd + static_cast<std::size_t>(j)];
+  std::vector<int> landed;
+  for (std::size_t i = 0; i < ns; ++i) {
+    landed.clear();
+    for (int k : source_raster.area_cells[i]) {
+      const int j = dest_raster.label_at_cell(to_cell * source_raster.centres[static_cast<std::size_t>(k)]);
+      if (j >= 0) landed.push_back(j);
+    }
+    hits += landed.size();
+    overlap[i] = detail::counted(landed);
   }
   const double scale2 = T_dest_source.scale * T_dest_source.scale;  // source cells → destination cells
   const double source_cells = static_cast<double>(source_raster.centres.size()) * scale2;
@@ -133,25 +139,32 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   double consistent = 0.0;
   for (std::size_t i = 0; i < ns; ++i) {
     const double a = static_cast<double>(source_raster.area_cells[i].size()) * scale2;
-    for (std::size_t j = 0; j < nd; ++j) {
-      const double o = static_cast<double>(overlap[i * nd + j]) * scale2;
-      if (o <= 0.0) continue;
-      const double b = static_cast<double>(dest_raster.area_cells[j].size());
+    for (const auto& [j, cells] : overlap[i]) {
+      const double o = static_cast<double>(cells) * scale2;
+      const double b = static_cast<double>(dest_raster.area_cells[static_cast<std::size_t>(j)].size());
       if (o >= 0.5 * (a + b - o)) consistent += o;
     }
   }
   e.room_agreement = common > 0.0 ? consistent / common : 0.0;
 
-  // Passages of the common part with a counterpart in the other map.
+  // Passages of the common part with a counterpart in the other map (the other map's passages
+  // by x, so each looks only at those within reach along x).
   std::size_t considered = 0, matched = 0;
   const double d2 = passage_distance_m * passage_distance_m;
+  const double reach = passage_distance_m * (1.0 + 1e-9);  // rounding must not narrow the window
   auto count = [&](const AreaGraph& from, const AreaGraph& to, const AreaRaster& to_raster, const Similarity2& T) {
+    std::vector<Eigen::Vector2d> by_x;
+    by_x.reserve(to.passages.size());
+    for (const Passage& r : to.passages) by_x.push_back(r.position);
+    std::sort(by_x.begin(), by_x.end(), [](const Eigen::Vector2d& a, const Eigen::Vector2d& b) { return a.x() < b.x(); });
     for (const Passage& p : from.passages) {
       const Eigen::Vector2d q = T * p.position;
       if (!detail::near_labelled(to_raster, q)) continue;
       ++considered;
-      for (const Passage& r : to.passages) {
-        if ((r.position - q).squaredNorm() <= d2) {
+      auto it = std::lower_bound(by_x.begin(), by_x.end(), q.x() - reach,
+                                 [](const Eigen::Vector2d& r, double x) { return r.x() < x; });
+      for (; it != by_x.end() && it->x() <= q.x() + reach; ++it) {
+        if ((*it - q).squaredNorm() <= d2) {
           ++matched;
           break;
         }

@@ -18,8 +18,13 @@
 ///   }
 ///   // optional: std::optional<areamatch::SegmentMatch> segments(const descriptor_type& source,
 ///   //                                                             const descriptor_type& dest) const;
+///   // optional: double bound_key(const descriptor_type& d) const { return d; }
 /// };
 /// \endcode
+/// `bound_key`, when a feature has it, is a number ≥ 0 per descriptor with
+/// cost(a, b) ≥ relative_difference(bound_key(a), bound_key(b)) for every a, b. The pairing then
+/// skips area pairs whose keys differ too much for the pair to be among the k nearest: the same
+/// pairs, found without comparing every area with every other (match/costs.hpp).
 /// The paper's three features are `AreaSize`, `PassageDistances` and `HullDiameter`.
 
 #include "../area_graph.hpp"
@@ -28,6 +33,7 @@
 #include <Eigen/Core>
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -80,9 +86,8 @@ struct SegmentMatch {
 struct AreaSize {
   using descriptor_type = double;  ///< m²
   descriptor_type describe(const AreaGraph&, const Area& area) const { return area.size_m2; }
-  double cost(double source, double dest) const {
-    return relative_difference(std::sqrt(std::max(0.0, source)), std::sqrt(std::max(0.0, dest)));
-  }
+  double cost(double source, double dest) const { return relative_difference(bound_key(source), bound_key(dest)); }
+  double bound_key(double size_m2) const { return std::sqrt(std::max(0.0, size_m2)); }
 };
 
 namespace detail {
@@ -105,6 +110,7 @@ struct HullDiameter {
   double cost(const descriptor_type& source, const descriptor_type& dest) const {
     return relative_difference(source.length(), dest.length());
   }
+  double bound_key(const descriptor_type& diameter) const { return diameter.length(); }
   std::optional<SegmentMatch> segments(const descriptor_type& source, const descriptor_type& dest) const {
     return SegmentMatch{source, dest, SegmentSource::hull_diameter};
   }
@@ -120,6 +126,14 @@ struct HullDiameter {
 /// distance, so every pair gets a cost in [0, 1] and the weights keep summing to one — and there
 /// is no passage-pair evidence for that pair (the hull diameters give it instead).
 struct PassageDistances {
+  /// Each passage is paired with at most this many others, its nearest (ties: the earlier
+  /// passage); a pair is kept when either end chose the other. An area of up to max_partners + 1
+  /// passages keeps all K(K−1)/2 pairs, as the paper does (every area of the shared maps: the
+  /// most passages any has is 55); a corridor of a large floor with thousands of doors keeps
+  /// about max_partners pairs per door instead of millions — which told nothing anyway: among a
+  /// million lengths some length matches any other area's.
+  std::size_t max_partners = 63;
+
   struct descriptor_type {
     std::vector<AreaSegment> pairs;   ///< one per pair of distinct passage positions
     std::vector<double> lengths;      ///< pairs[n].length(), ascending
@@ -141,10 +155,9 @@ struct PassageDistances {
     // K(K−1)/2 pairs, and sorting the segments by a recomputed length was most of a large map's
     // descriptor time.
     const std::size_t k = positions.size();
-    std::vector<std::pair<double, std::size_t>> order;  // (length, i · k + j)
-    order.reserve(k > 1 ? k * (k - 1) / 2 : 0);
-    for (std::size_t i = 0; i < k; ++i) {
-      for (std::size_t j = i + 1; j < k; ++j) order.emplace_back((positions[j] - positions[i]).norm(), i * k + j);
+    std::vector<std::pair<double, std::size_t>> order;  // (length, i · k + j), i < j
+    for (const std::size_t ij : pair_indices(positions)) {
+      order.emplace_back((positions[ij % k] - positions[ij / k]).norm(), ij);
     }
     std::sort(order.begin(), order.end());
     d.pairs.reserve(order.size());
@@ -172,6 +185,35 @@ struct PassageDistances {
   }
 
  private:
+  /// The pairs i < j of passage positions kept (see `max_partners`), as i · K + j, ascending.
+  std::vector<std::size_t> pair_indices(const std::vector<Eigen::Vector2d>& positions) const {
+    const std::size_t k = positions.size();
+    std::vector<std::size_t> out;
+    if (k <= max_partners + 1) {
+      out.reserve(k > 1 ? k * (k - 1) / 2 : 0);
+      for (std::size_t i = 0; i < k; ++i) {
+        for (std::size_t j = i + 1; j < k; ++j) out.push_back(i * k + j);
+      }
+      return out;
+    }
+    out.reserve(k * max_partners);
+    std::vector<std::pair<double, std::size_t>> others;  // (squared distance, j)
+    for (std::size_t i = 0; i < k; ++i) {
+      others.clear();
+      for (std::size_t j = 0; j < k; ++j) {
+        if (j != i) others.emplace_back((positions[j] - positions[i]).squaredNorm(), j);
+      }
+      std::nth_element(others.begin(), others.begin() + static_cast<std::ptrdiff_t>(max_partners), others.end());
+      for (std::size_t n = 0; n < max_partners; ++n) {
+        const std::size_t j = others[n].second;
+        out.push_back(std::min(i, j) * k + std::max(i, j));
+      }
+    }
+    std::sort(out.begin(), out.end());
+    out.erase(std::unique(out.begin(), out.end()), out.end());
+    return out;
+  }
+
   /// Indices of the closest pair of lengths (relative difference), first in order on ties.
   static std::pair<std::size_t, std::size_t> best(const descriptor_type& s, const descriptor_type& d) {
     std::pair<std::size_t, std::size_t> arg{0, 0};
@@ -214,6 +256,15 @@ struct has_describe_and_cost<
                                 double>> {};
 
 template <class F, class = void>
+struct has_bound_key : std::false_type {};
+template <class F>
+struct has_bound_key<F, std::void_t<decltype(std::declval<const F&>().bound_key(
+                            std::declval<const typename F::descriptor_type&>()))>>
+    : std::is_convertible<decltype(std::declval<const F&>().bound_key(
+                              std::declval<const typename F::descriptor_type&>())),
+                          double> {};
+
+template <class F, class = void>
 struct has_segments : std::false_type {};
 template <class F>
 struct has_segments<F, std::void_t<decltype(std::declval<const F&>().segments(
@@ -228,6 +279,10 @@ struct has_segments<F, std::void_t<decltype(std::declval<const F&>().segments(
 /// True when F is a feature policy (see the file comment).
 template <class F>
 inline constexpr bool is_feature_v = detail::has_describe_and_cost<F>::value;
+
+/// True when the feature gives a key that bounds its cost from below (see the file comment).
+template <class F>
+inline constexpr bool feature_has_bound_key_v = detail::has_bound_key<F>::value;
 
 /// True when the feature also reports the segments it matched.
 template <class F>
@@ -264,6 +319,22 @@ struct FeatureSet {
     return out;
   }
 
+  /// Σ_k weights_k · cost_k for source area i and destination area j, each cost clamped to
+  /// [0, 1] (NaN: 1): entry (i, j) of `weighted_cost(costs(source, dest), weights)`, bit for bit.
+  double weighted_cost(const descriptors_type& source, const descriptors_type& dest, std::size_t i, std::size_t j,
+                       const std::array<double, size>& weights) const {
+    double total = 0.0;
+    weighted_cost_each(source, dest, i, j, weights, total, std::index_sequence_for<Features...>{});
+    return total;
+  }
+
+  /// Per feature, every area's `bound_key` (empty for a feature without one).
+  std::array<std::vector<double>, size> bound_keys(const descriptors_type& descriptors) const {
+    std::array<std::vector<double>, size> out;
+    bound_keys_each(descriptors, out, std::index_sequence_for<Features...>{});
+    return out;
+  }
+
   /// The segment evidence of every feature that gives one, for source area i and destination
   /// area j, in feature order.
   std::vector<SegmentMatch> segments(const descriptors_type& source, const descriptors_type& dest, std::size_t i,
@@ -289,17 +360,42 @@ struct FeatureSet {
                   std::index_sequence<I...>) const {
     (out.push_back(cost_matrix<I>(std::get<I>(s), std::get<I>(d))), ...);
   }
+  template <std::size_t I, class Descriptor>
+  double unit_cost(const Descriptor& s, const Descriptor& d) const {
+    const double c = std::get<I>(features).cost(s, d);
+    // A user feature returning NaN or values outside [0, 1] must not derail the ranking.
+    return std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 1.0;
+  }
   template <std::size_t I, class Vector>
   Eigen::MatrixXd cost_matrix(const Vector& s, const Vector& d) const {
     Eigen::MatrixXd m(static_cast<Eigen::Index>(s.size()), static_cast<Eigen::Index>(d.size()));
     for (std::size_t i = 0; i < s.size(); ++i) {
       for (std::size_t j = 0; j < d.size(); ++j) {
-        const double c = std::get<I>(features).cost(s[i], d[j]);
-        // A user feature returning NaN or values outside [0, 1] must not derail the ranking.
-        m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = std::isfinite(c) ? std::clamp(c, 0.0, 1.0) : 1.0;
+        m(static_cast<Eigen::Index>(i), static_cast<Eigen::Index>(j)) = unit_cost<I>(s[i], d[j]);
       }
     }
     return m;
+  }
+
+  template <std::size_t... I>
+  void weighted_cost_each(const descriptors_type& s, const descriptors_type& d, std::size_t i, std::size_t j,
+                          const std::array<double, size>& weights, double& total, std::index_sequence<I...>) const {
+    // In feature order, one product added at a time: the sum `weighted_cost` forms matrix-wise.
+    ((total += weights[I] * unit_cost<I>(std::get<I>(s)[i], std::get<I>(d)[j])), ...);
+  }
+
+  template <std::size_t... I>
+  void bound_keys_each(const descriptors_type& descriptors, std::array<std::vector<double>, size>& out,
+                       std::index_sequence<I...>) const {
+    (bound_keys_one<I>(std::get<I>(descriptors), out[I]), ...);
+  }
+  template <std::size_t I, class Vector>
+  void bound_keys_one(const Vector& descriptors, std::vector<double>& out) const {
+    using F = std::tuple_element_t<I, std::tuple<Features...>>;
+    if constexpr (feature_has_bound_key_v<F>) {
+      out.reserve(descriptors.size());
+      for (const auto& d : descriptors) out.push_back(std::get<I>(features).bound_key(d));
+    }
   }
 
   template <std::size_t... I>

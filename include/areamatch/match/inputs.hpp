@@ -44,7 +44,8 @@ inline void check_area_limit(const MatcherParams& params, const AreaGraph& sourc
     if (graph->areas.size() > params.max_areas) {
       throw limit_error(std::string("the ") + which + " map has " + std::to_string(graph->areas.size()) +
                         " areas, more than MatcherParams::max_areas (" + std::to_string(params.max_areas) +
-                        "); raise it (matching time grows with areas_source x areas_dest) or match parts of the map");
+                        "); raise it if the map really has that many rooms, or clean the map (a map shattered into "
+                        "pieces by noise read as walls) or match parts of it");
     }
   }
 }

@@ -91,10 +91,13 @@ struct MatcherParams {
   double ambiguity_margin = 0.02;
   /// Room correspondences and per-room transforms (`MatchResult::matched_areas`).
   CorrespondenceParams correspondences;
-  /// Most areas accepted per map; beyond, `match` throws `limit_error`. The feature costs grow
-  /// with areas_source × areas_dest: a pair of 1550-area maps takes 3.6 s to match on the CI
-  /// machine, so the limit keeps a pair under about 15 s.
-  std::size_t max_areas = 3000;
+  /// Most areas accepted per map; beyond, `match` throws `limit_error`. A guard against a map
+  /// shattered into pieces (noise read as walls), no longer against cost: the area pairs are
+  /// found along the features' bound keys (match/costs.hpp) and the evidence lists only the pairs
+  /// that meet, so matching grows with the areas, not with areas_source × areas_dest. A
+  /// 400 × 300 m generated floor has about 5000 areas; `max_grid_cells` bounds a map long before
+  /// this does (docs/performance.md).
+  std::size_t max_areas = 20000;
 
   /// The paper as written (docs/algorithm.md): k = 3, one rotation per pair from the passage pair
   /// (or hull diameters), exact OP ≥ 0.5; no refinement, no rejection. With `PaperMatcher`'s

@@ -41,6 +41,20 @@ inline std::vector<std::size_t> cells_within(const std::vector<std::size_t>& cel
   return within;
 }
 
+/// The distinct values of `labels` with how often each occurs, values ascending (`labels` is
+/// sorted in place): the areas one area's cells fell into, without a table of every area.
+inline std::vector<std::pair<int, std::size_t>> counted(std::vector<int>& labels) {
+  std::sort(labels.begin(), labels.end());
+  std::vector<std::pair<int, std::size_t>> out;
+  for (std::size_t k = 0; k < labels.size();) {
+    std::size_t end = k;
+    while (end < labels.size() && labels[end] == labels[k]) ++end;
+    out.emplace_back(labels[k], end - k);
+    k = end;
+  }
+  return out;
+}
+
 }  // namespace detail
 
 /// The pixels that can hold an area: the envelope of the area polygons, grown by `margin` pixels
