@@ -830,3 +830,43 @@ TEST_CASE("parameters the segmenter derives from another stage are refused, not 
   skeleton_only.params.skeleton.min_clearance_m = 0.3;
   CHECK(agreeing.segment(building.layout).areas.size() == skeleton_only.segment(building.layout).areas.size());
 }
+
+TEST_CASE("label images: 16 bits while the labels fit, 32 once one does not, the same values either way") {
+  LabelImage labels(6, -1);
+  CHECK(labels.size() == 6);
+  CHECK(labels.bytes_per_cell() == 2);
+  labels.fill(1, 3, 7);
+  labels.set(5, 32767);
+  CHECK(labels.bytes_per_cell() == 2);
+  CHECK(labels.to_vector() == std::vector<int>{-1, 7, 7, -1, -1, 32767});
+  labels.set(4, 40000);  // widens, keeping what was there
+  CHECK(labels.bytes_per_cell() == 4);
+  CHECK(labels.to_vector() == std::vector<int>{-1, 7, 7, -1, 40000, 32767});
+  std::vector<int> read;
+  for (int label : labels) read.push_back(label);
+  CHECK(read == labels.to_vector());
+
+  const LabelImage narrow{-1, 0, 2}, wide(std::vector<int>{-1, 0, 2});
+  LabelImage widened = narrow;
+  widened.assign(3, 0, 70000);
+  widened.set(0, -1);
+  widened.set(2, 2);
+  CHECK(widened.bytes_per_cell() == 4);
+  CHECK(narrow == wide);
+  CHECK(narrow == widened);  // equal by value across widths
+  CHECK(narrow != LabelImage{-1, 0, 3});
+  CHECK(narrow != LabelImage{-1, 0});
+  CHECK(LabelImage(std::vector<int>{5, 100000}).bytes_per_cell() == 4);
+  CHECK(LabelImage().empty());
+}
+
+TEST_CASE("a segmentation's labels take 2 bytes a cell, the same with its details or without") {
+  const auto building = generate_building({}, 3);
+  const VoronoiSegmenter segmenter;
+  const AreaGraph graph = segmenter.segment(building.layout);
+  REQUIRE(!graph.areas.empty());
+  CHECK(graph.labels.bytes_per_cell() == 2);
+  CHECK(graph.labels.size() == building.layout.cells().size());
+  CHECK(graph.labels == segmenter.segment_with_details(building.layout).graph.labels);
+  CHECK_FALSE(segmenter.segment_with_details(building.layout).skeleton.branches.empty());
+}

@@ -7,6 +7,7 @@
 /// Rooms and areas smaller than `min_cells` are ignored (200 cells = 0.5 m² at 0.05 m).
 /// `segmentation_consistency` compares two segmentations of one building across maps.
 
+#include "area_graph.hpp"
 #include "detail/run_components.hpp"
 #include "image.hpp"
 #include "transform.hpp"
@@ -117,6 +118,19 @@ inline double segmentation_consistency(const std::vector<int>& source_labels, in
     consistent += best_iou[area] >= 0.5;
   }
   return counted ? static_cast<double>(consistent) / counted : std::numeric_limits<double>::quiet_NaN();
+}
+
+/// `score_segmentation` of a graph's labels.
+inline SegmentationScore score_segmentation(const LabelImage& labels, const std::vector<int>& rooms, std::size_t min_cells = 200) {
+  return score_segmentation(labels.to_vector(), rooms, min_cells);
+}
+
+/// `segmentation_consistency` of two graphs' labels.
+inline double segmentation_consistency(const LabelImage& source_labels, int source_width, int source_height,
+                                       const LabelImage& dest_labels, int dest_width, int dest_height,
+                                       const PixelTransform& pixel_transform, std::size_t min_cells = 200) {
+  return segmentation_consistency(source_labels.to_vector(), source_width, source_height, dest_labels.to_vector(),
+                                  dest_width, dest_height, pixel_transform, min_cells);
 }
 
 }  // namespace areamatch

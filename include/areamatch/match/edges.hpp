@@ -60,6 +60,7 @@ std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds
       out.push_back(grid_row + static_cast<std::size_t>(x0 + mx));
     }
   }
+  out.shrink_to_fit();  // kept with the match data: without the growth's slack (up to half)
   return out;
 }
 
@@ -105,6 +106,7 @@ inline std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const std
     for (std::size_t i = 0; i < max_points; ++i) thinned.push_back(points[i * points.size() / max_points]);
     points.swap(thinned);
   }
+  points.shrink_to_fit();  // kept with the match data: without the growth's slack (up to half)
   return points;
 }
 

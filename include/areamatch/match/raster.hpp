@@ -167,6 +167,10 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
       r.centre_labels.push_back(label);
     }
   }
+  // Kept with the match data: without the growth's slack (up to half).
+  r.centres.shrink_to_fit();
+  r.centre_labels.shrink_to_fit();
+  for (auto& cells : r.area_cells) cells.shrink_to_fit();
   return r;
 }
 

@@ -52,8 +52,9 @@ inline std::array<std::ptrdiff_t, 4> four_neighbour_offsets(int W) {
 /// ends up wholly in that region, whatever the order of growth: such pieces are labelled here and
 /// cleared from `core`. Pieces that seeds of several regions touch are left for the cell-by-cell
 /// growth, which decides their borders by distance exactly as before.
-inline void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<int>& label,
-                                  const std::vector<std::uint32_t>& seeds, int W, int H) {
+template <class Label>
+void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<Label>& label, const std::vector<std::uint32_t>& seeds,
+                           int W, int H) {
   const RunComponents pieces = run_components(core, W, H, 1, false);
   constexpr int unreached = -1, contested = -2;
   std::vector<int> region_of_piece(pieces.runs.size(), unreached);
@@ -80,20 +81,21 @@ inline void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<i
     const CellRun& run = pieces.runs[i];
     const auto from = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.begin);
     const auto to = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.end);
-    std::fill(label.begin() + from, label.begin() + to, region);
+    std::fill(label.begin() + from, label.begin() + to, static_cast<Label>(region));
     std::fill(core.begin() + from, core.begin() + to, std::uint8_t{0});
   }
 }
 
 /// The labels while areas are built: a region id (≥ 0) per cell of the cropped mask, or one of
-/// these.
+/// these; held as `Label`, 16 bits when the region ids fit (`build_areas`).
 inline constexpr int unlabelled = -1, barrier = -2;
 
 /// Step 1: seals every passage with a line of barrier cells (marked in `label`, taken out of
 /// `core`), so growth cannot cross it. Doors are sealed one cell beyond both walls; junction
 /// spokes start at the junction. Returns the barrier cells, ascending.
-inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetection& rooms, std::vector<int>& label,
-                                                std::vector<std::uint8_t>& core) {
+template <class Label>
+std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetection& rooms, std::vector<Label>& label,
+                                         std::vector<std::uint8_t>& core) {
   const int W = space.width;
   std::vector<std::uint32_t> barrier_cells;
   for (const auto& p : rooms.passages) {
@@ -102,7 +104,7 @@ inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const Ro
       if (!space.is_free(c, r)) return;
       const std::size_t i = static_cast<std::size_t>(r) * W + c;
       if (label[i] == barrier) return;
-      label[i] = barrier;
+      label[i] = static_cast<Label>(barrier);
       core[i] = 0;  // growth never enters a barrier cell
       barrier_cells.push_back(static_cast<std::uint32_t>(i));
     });
@@ -114,8 +116,9 @@ inline std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const Ro
 /// Step 2: grows every region from its skeleton samples, 4-connected: first over the core, then
 /// `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only that
 /// far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
-inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int fringe_steps, std::vector<int>& label,
-                         std::vector<std::uint8_t>& core) {
+template <class Label>
+void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int fringe_steps, std::vector<Label>& label,
+                  std::vector<std::uint8_t>& core) {
   const int W = space.width, H = space.height;
   const SampleGraph& g = rooms.graph;
   std::vector<std::uint32_t> queue;
@@ -127,7 +130,7 @@ inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int
     if (!space.is_free(c, r)) continue;
     const std::size_t i = static_cast<std::size_t>(r) * W + c;
     if (label[i] != unlabelled) continue;  // a barrier, or seeded already
-    label[i] = region;
+    label[i] = static_cast<Label>(region);
     queue.push_back(static_cast<std::uint32_t>(i));
   }
   const auto neighbour_offset = four_neighbour_offsets(W);
@@ -181,7 +184,8 @@ inline void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int
 }
 
 /// Step 3: each barrier cell joins the region most of its neighbours belong to (ties: the lower id).
-inline void assign_barrier_cells(const std::vector<std::uint32_t>& barrier_cells, int W, std::vector<int>& label) {
+template <class Label>
+void assign_barrier_cells(const std::vector<std::uint32_t>& barrier_cells, int W, std::vector<Label>& label) {
   const auto neighbour_offset = four_neighbour_offsets(W);
   auto majority_of_neighbours = [&](std::size_t i) {
     int candidates[4], votes[4], count = 0;
@@ -200,7 +204,7 @@ inline void assign_barrier_cells(const std::vector<std::uint32_t>& barrier_cells
   };
   std::vector<int> barrier_labels;
   for (std::uint32_t i : barrier_cells) barrier_labels.push_back(majority_of_neighbours(i));
-  for (std::size_t k = 0; k < barrier_cells.size(); ++k) label[barrier_cells[k]] = barrier_labels[k];
+  for (std::size_t k = 0; k < barrier_cells.size(); ++k) label[barrier_cells[k]] = static_cast<Label>(barrier_labels[k]);
 }
 
 }  // namespace detail

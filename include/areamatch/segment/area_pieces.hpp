@@ -29,13 +29,14 @@ struct LabelRuns {
 };
 
 /// Step 4: the labelled cells as runs (labelled cells are free: non-free stretches are skipped).
-inline LabelRuns label_runs(const FreeSpace& space, const std::vector<int>& label) {
+template <class Label>
+LabelRuns label_runs(const FreeSpace& space, const std::vector<Label>& label) {
   const int W = space.width, H = space.height;
   LabelRuns out;
   out.row_start.assign(static_cast<std::size_t>(H) + 1, 0);
   for (int r = 0; r < H; ++r) {
     out.row_start[r] = out.runs.size();
-    const int* row = &label[static_cast<std::size_t>(r) * W];
+    const Label* row = &label[static_cast<std::size_t>(r) * W];
     const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
     int c = 0;
     while ((c = find_byte_equal(free_row, c, W, 1)) < W) {

@@ -1,7 +1,7 @@
 #pragma once
 /// \file segment/area_tracing.hpp
-/// Steps 8–11 of `build_areas`: the areas' polygons traced along the labelled cells' sides,
-/// their widest free disc and kind, the passages between them, and the labels written back onto the grid.
+/// Steps 8–11 of `build_areas`: the labels written onto the grid, the areas' polygons traced
+/// along the labelled cells' sides, their widest free disc and kind, and the passages between them.
 
 #include "../area_graph.hpp"
 #include "../geometry.hpp"
@@ -77,24 +77,57 @@ struct LatticeFrame {
   Eigen::Vector2d operator()(const Eigen::Vector2d& lattice) const { return lattice_to_world(*grid, lattice + offset); }
 };
 
-/// Step 8: the areas' polygons, traced on the final labels (written back into `label` from the
-/// runs; one walk over every area's boundary at once), with their size, hull and centroid. An
-/// area is 4-connected: its largest loop is the outline, and the loops turning the other way are
-/// its holes (some touching the outline at a corner).
-inline void trace_areas(const LabelRuns& labelled, int W, int H, double res, const LatticeFrame& to_world, int area_count,
-                        std::vector<int>& label, AreaGraph& graph) {
+/// Step 8: the final labels (the runs hold them) onto the whole grid, row by row, into the
+/// graph's compact `LabelImage`; the areas are traced on it next. The grid's free cells are
+/// counted in the same pass, for `covered_fraction` (a separate count reread the whole grid).
+inline void write_labels(const OccupancyGrid& grid, const FreeSpace& space, const LabelRuns& labelled, int area_count,
+                         AreaGraph& graph) {
+  constexpr auto free_byte = static_cast<std::uint8_t>(CellState::free);
+  std::size_t labelled_cells = 0, free_cells = 0;
+  graph.labels.assign(grid.cells().size(), -1, area_count - 1);
+  for (int gr = 0; gr < grid.height(); ++gr) {
+    const std::size_t row_start = grid.index(0, gr);
+    const CellState* state = &grid.cells()[grid.index(0, gr)];
+    free_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state), static_cast<std::size_t>(grid.width()), free_byte);
+    const int r = gr - space.offset_row;
+    if (r < 0 || r >= space.height) continue;
+    for (std::size_t k = labelled.row_start[r]; k < labelled.row_start[r + 1]; ++k) {
+      const LabelRun& run = labelled.runs[k];
+      if (run.label < 0) continue;
+      const int first = std::max(run.begin + space.offset_col, 0);
+      const int last = std::min(run.end + space.offset_col, grid.width());
+      if (first >= last) continue;
+      graph.labels.fill(row_start + static_cast<std::size_t>(first), row_start + static_cast<std::size_t>(last), run.label);
+      labelled_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
+    }
+  }
+  graph.covered_fraction = free_cells ? static_cast<double>(labelled_cells) / free_cells : 0.0;
+}
+
+/// Step 9: the areas' polygons, traced on the graph's final labels (`write_labels`: the mask's
+/// cell (c, r) is the grid's (c + offset_col, r + offset_row); one walk over every area's boundary
+/// at once), with their size, hull and centroid. An area is 4-connected: its largest loop is the
+/// outline, and the loops turning the other way are its holes (some touching the outline at a
+/// corner).
+inline void trace_areas(const LabelRuns& labelled, const FreeSpace& space, double res, const LatticeFrame& to_world,
+                        int area_count, AreaGraph& graph) {
+  const int W = space.width, H = space.height;
   graph.areas.resize(area_count);
   for (const auto& run : labelled.runs) {
-    const auto row = static_cast<std::ptrdiff_t>(run.row) * W;
-    std::fill(label.begin() + row + run.begin, label.begin() + row + run.end, run.label);
     if (run.label >= 0) graph.areas[run.label].size_m2 += (run.end - run.begin) * res * res;
   }
+  const int grid_width = graph.grid.width, grid_height = graph.grid.height;
+  auto label_at = [&](int c, int r) {
+    const int col = c + space.offset_col, row = r + space.offset_row;
+    if (col < 0 || row < 0 || col >= grid_width || row >= grid_height) return -1;  // the mask's border
+    return graph.labels[static_cast<std::size_t>(row) * static_cast<std::size_t>(grid_width) + static_cast<std::size_t>(col)];
+  };
   std::vector<std::vector<std::vector<LatticePoint>>> loops_of_area(area_count);
   auto keep_loops = [&](int a, const std::vector<LatticePoint>& ring, const std::vector<bool>& pinned) {
     for (auto& loop : split_pinched_ring(ring, pinned)) loops_of_area[a].push_back(std::move(loop));
   };
   // Every ring has vertical sides, and those lie at the ends of runs: start only there.
-  RingTracer tracer(W, H, [&](int c, int r) { return label[static_cast<std::size_t>(r) * W + c]; });
+  RingTracer tracer(W, H, label_at);
   for (const auto& run : labelled.runs) {
     tracer.trace_from(run.begin, run.row, 1, keep_loops);
     tracer.trace_from(run.end - 1, run.row, 3, keep_loops);
@@ -130,7 +163,7 @@ inline void trace_areas(const LabelRuns& labelled, int W, int H, double res, con
   }
 }
 
-/// Step 9: each area's widest free disc (from its regions' skeleton samples) and its kind: a
+/// Step 10: each area's widest free disc (from its regions' skeleton samples) and its kind: a
 /// corridor when its hull diameter exceeds `corridor_elongation` times that disc's diameter.
 inline void measure_areas(const RoomDetection& rooms, const std::vector<int>& area_of_region, double res,
                           const AreaParams& params, AreaGraph& graph) {
@@ -148,7 +181,7 @@ inline void measure_areas(const RoomDetection& rooms, const std::vector<int>& ar
   }
 }
 
-/// Step 10: the passages between the areas their regions became (none inside one area).
+/// Step 11: the passages between the areas their regions became (none inside one area).
 inline void add_passages(const RoomDetection& rooms, const std::vector<int>& area_of_region, double res,
                          const LatticeFrame& to_world, AreaGraph& graph) {
   const SampleGraph& g = rooms.graph;
@@ -173,37 +206,6 @@ inline void add_passages(const RoomDetection& rooms, const std::vector<int>& are
     graph.areas[areas.second].passages.push_back(passage.id);
     graph.passages.push_back(passage);
   }
-}
-
-/// Step 11: the labels back onto the whole grid, row by row, into the working labels' buffer
-/// (`label`, moved in: the runs hold the final labels, the buffer is no longer read): each row is
-/// written once, while in cache (filling the grid with −1 first and scattering the runs after
-/// cost office_g ~1.3 ms more). The grid's free cells are counted in the same pass, for
-/// `covered_fraction` (a separate count reread the whole grid).
-inline void write_labels(const OccupancyGrid& grid, const FreeSpace& space, const LabelRuns& labelled,
-                         std::vector<int>&& label, AreaGraph& graph) {
-  constexpr auto free_byte = static_cast<std::uint8_t>(CellState::free);
-  std::size_t labelled_cells = 0, free_cells = 0;
-  graph.labels = std::move(label);
-  graph.labels.resize(grid.cells().size());
-  for (int gr = 0; gr < grid.height(); ++gr) {
-    int* out = &graph.labels[grid.index(0, gr)];
-    std::fill(out, out + grid.width(), -1);
-    const CellState* state = &grid.cells()[grid.index(0, gr)];
-    free_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state), static_cast<std::size_t>(grid.width()), free_byte);
-    const int r = gr - space.offset_row;
-    if (r < 0 || r >= space.height) continue;
-    for (std::size_t k = labelled.row_start[r]; k < labelled.row_start[r + 1]; ++k) {
-      const LabelRun& run = labelled.runs[k];
-      if (run.label < 0) continue;
-      const int first = std::max(run.begin + space.offset_col, 0);
-      const int last = std::min(run.end + space.offset_col, grid.width());
-      if (first >= last) continue;
-      std::fill(out + first, out + last, run.label);
-      labelled_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
-    }
-  }
-  graph.covered_fraction = free_cells ? static_cast<double>(labelled_cells) / free_cells : 0.0;
 }
 
 }  // namespace detail

@@ -39,13 +39,33 @@
 
 namespace areamatch {
 
+namespace detail {
+
+/// Steps 1–4 on working labels of type `Label` (a region id or `unlabelled`/`barrier` per cell
+/// of the free space's extent): passages sealed, regions grown over the core and then the fringe,
+/// barrier cells assigned, and the result as runs — the working labels are let go on return.
+template <class Label>
+LabelRuns grow_labels(const FreeSpace& space, const RoomDetection& rooms, const AreaParams& params, double res) {
+  // The core: free cells at least min_clearance from every wall, where the skeleton lives.
+  std::vector<std::uint8_t> core = erode(space, params.min_clearance_m / res + 0.5);
+  std::vector<Label> label(static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height),
+                           static_cast<Label>(unlabelled));
+  const std::vector<std::uint32_t> barrier_cells = seal_passages(space, rooms, label, core);
+  const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
+  grow_regions(space, rooms, fringe_steps, label, core);
+  std::vector<std::uint8_t>().swap(core);
+  assign_barrier_cells(barrier_cells, space.width, label);
+  return label_runs(space, label);
+}
+
+}  // namespace detail
+
 /// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
 /// the free-cell count for `covered_fraction`.
 inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
                              const AreaParams& params = {}) {
   params.validate();
-  const int W = space.width, H = space.height;
-  const std::size_t N = static_cast<std::size_t>(W) * H;
+  const std::size_t N = static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height);
   const double res = grid.resolution();
   AreaGraph graph;
   graph.grid = GridInfo::of(grid);
@@ -56,29 +76,19 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
   const detail::LatticeFrame to_world{&grid, Eigen::Vector2d(space.offset_col, space.offset_row)};
 
-  // The core: free cells at least min_clearance from every wall, where the skeleton lives.
-  std::vector<std::uint8_t> core = detail::erode(space, params.min_clearance_m / res + 0.5);
-  // The working labels' buffer becomes `graph.labels` at the end (the grid's size, at least N):
-  // one large allocation instead of two, whose first touch of every page costs most of a pass.
-  std::vector<int> label;
-  label.reserve(std::max(N, grid.cells().size()));
-  label.assign(N, detail::unlabelled);
-
-  const std::vector<std::uint32_t> barrier_cells = detail::seal_passages(space, rooms, label, core);
-  const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
-  detail::grow_regions(space, rooms, fringe_steps, label, core);
-  detail::assign_barrier_cells(barrier_cells, W, label);
-
-  detail::LabelRuns runs = detail::label_runs(space, label);
+  // 16-bit working labels when the region ids fit: on a large floor they were the largest buffer.
+  detail::LabelRuns runs = rooms.region_count() < std::numeric_limits<std::int16_t>::max()
+                               ? detail::grow_labels<std::int16_t>(space, rooms, params, res)
+                               : detail::grow_labels<std::int32_t>(space, rooms, params, res);
   const detail::Pieces pieces = detail::find_pieces(runs);
   const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
   const detail::PieceAreas areas = detail::merge_small_pieces(runs, pieces, min_cells);
   const std::vector<int> area_of_region = detail::area_of_regions(rooms.region_count(), pieces, areas.area_of_piece);
 
-  detail::trace_areas(runs, W, H, res, to_world, areas.area_count, label, graph);
+  detail::write_labels(grid, space, runs, areas.area_count, graph);
+  detail::trace_areas(runs, space, res, to_world, areas.area_count, graph);
   detail::measure_areas(rooms, area_of_region, res, params, graph);
   detail::add_passages(rooms, area_of_region, res, to_world, graph);
-  detail::write_labels(grid, space, runs, std::move(label), graph);
   return graph;
 }
 

@@ -74,10 +74,19 @@ struct SampleGraph {
 
   static SampleGraph from(const Skeleton& skeleton) {
     SampleGraph g;
-    g.samples.reserve(skeleton.nodes.size());
+    // Sized exactly: a large floor has millions of samples, and growing by doubling held up to
+    // three copies at once.
+    std::size_t inner = 0, link_count = 0;
+    for (const auto& branch : skeleton.branches) {
+      if (branch.removed) continue;
+      inner += branch.samples.size() > 2 ? branch.samples.size() - 2 : 0;
+      link_count += branch.samples.size() > 2 ? branch.samples.size() - 1 : 1;
+    }
+    g.samples.reserve(skeleton.nodes.size() + inner);
     for (const auto& node : skeleton.nodes) g.samples.push_back(node.sample);
     // Links in order: (node or inner sample, next inner sample or node) along every kept branch.
     std::vector<std::pair<int, int>> links;
+    links.reserve(link_count);
     for (const auto& branch : skeleton.branches) {
       if (branch.removed) continue;
       int previous = branch.from;

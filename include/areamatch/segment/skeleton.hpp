@@ -209,8 +209,9 @@ inline std::vector<KeptEdge> kept_edges(const boost::polygon::voronoi_diagram<do
 }
 
 /// The graph over the kept edges into `skeleton`: nodes are vertices of degree ≠ 2 (plus one
-/// anchor per pure loop), branches the chains of edges between them.
-inline void link_kept_edges(const std::vector<KeptEdge>& kept, std::size_t vertex_count, Skeleton& skeleton) {
+/// anchor per pure loop), branches the chains of edges between them. Each edge's samples are let
+/// go once its branch has them (a large floor's samples are hundreds of MB: not twice).
+inline void link_kept_edges(std::vector<KeptEdge>& kept, std::size_t vertex_count, Skeleton& skeleton) {
   // Per diagram vertex (by index, ascending): its kept edges in the order they were kept.
   const auto incident = build_adjacency<std::size_t>(vertex_count, kept.size(), [&](std::size_t i) {
     return LinkEnds<std::size_t>{kept[i].v0, i, kept[i].v1, i};
@@ -244,12 +245,14 @@ inline void link_kept_edges(const std::vector<KeptEdge>& kept, std::size_t verte
       const std::size_t skip = branch.samples.empty() ? 0 : 1;
       if (forward) branch.samples.insert(branch.samples.end(), samples.begin() + static_cast<std::ptrdiff_t>(skip), samples.end());
       else branch.samples.insert(branch.samples.end(), samples.rbegin() + static_cast<std::ptrdiff_t>(skip), samples.rend());
+      std::vector<SkeletonSample>().swap(kept[e].samples);
       vertex = forward ? kept[e].v1 : kept[e].v0;
       if (node_of_vertex[vertex] >= 0) break;
       const std::size_t* next = incident.begin(vertex);  // degree 2: this edge and the next
       e = next[0] == e ? next[1] : next[0];
     }
     branch.to = node_of_vertex[vertex];
+    branch.samples.shrink_to_fit();  // a large floor's branches hold millions of samples: no slack
     for (std::size_t i = 1; i < branch.samples.size(); ++i)
       branch.length += (branch.samples[i].position - branch.samples[i - 1].position).norm();
     const int id = static_cast<int>(skeleton.branches.size());
@@ -303,14 +306,19 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
   skeleton.lattice_offset = Eigen::Vector2d(space.offset_col, space.offset_row);
   if (boundary.segments.empty()) return skeleton;
 
-  boost::polygon::voronoi_diagram<double> diagram;
-  // Boost.Polygon's builder, with corner circle events computed without multiprecision when
-  // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
-  detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram,
-                                    params.fast_circle_events);
-  const std::vector<detail::KeptEdge> kept = detail::kept_edges(
-      diagram, space, boundary, params.min_clearance_m / resolution, params.sample_step_m / resolution, skeleton);
-  detail::link_kept_edges(kept, diagram.vertices().size(), skeleton);
+  std::vector<detail::KeptEdge> kept;
+  std::size_t vertex_count = 0;
+  {  // the diagram is let go before the skeleton is linked: on a large floor it is the largest piece
+    boost::polygon::voronoi_diagram<double> diagram;
+    // Boost.Polygon's builder, with corner circle events computed without multiprecision when
+    // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
+    detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram,
+                                      params.fast_circle_events);
+    kept = detail::kept_edges(diagram, space, boundary, params.min_clearance_m / resolution,
+                              params.sample_step_m / resolution, skeleton);
+    vertex_count = diagram.vertices().size();
+  }
+  detail::link_kept_edges(kept, vertex_count, skeleton);
   detail::prune_spurs(skeleton, params.spur_length_m / resolution, params.keep_clearance_m / resolution);
   return skeleton;
 }
