@@ -9,6 +9,7 @@ int main(int argc, char** argv) {
   areamatch_bench::register_matching();
   areamatch_bench::register_merge();
   areamatch_bench::register_assessing();
+  areamatch_bench::register_growth();
   benchmark::Initialize(&argc, argv);
   if (benchmark::ReportUnrecognizedArguments(argc, argv)) return 1;
   benchmark::RunSpecifiedBenchmarks();

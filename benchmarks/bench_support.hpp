@@ -13,6 +13,7 @@ void register_segmentation();  // bench_segmentation.cpp: segment/, voronoi/, vo
 void register_matching();      // bench_matching.cpp: match/, pair/, onto_prepared/
 void register_merge();         // bench_merge.cpp: merge/
 void register_assessing();     // bench_assess.cpp: warp/, assess/
+void register_growth();        // bench_growth.cpp: growth/pair/, growth/onto_prepared/
 // bench_io_synthetic.cpp registers its BM_ benchmarks statically (BENCHMARK macros).
 
 /// Builds its value the first time it is asked for it.
