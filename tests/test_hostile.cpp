@@ -36,11 +36,12 @@ std::vector<unsigned char> png_header_only(std::uint32_t width, std::uint32_t he
 
 TEST_CASE("huge images are refused from their header, before any pixel memory is allocated") {
   CHECK_THROWS_AS(decode_png(png_header_only(30000, 10), "wide.png"), format_error);       // > max_image_side
-  CHECK_THROWS_AS(decode_png(png_header_only(8000, 8000), "big.png"), limit_error);        // > max_grid_cells
-  const std::string pgm = "P5 8000 8000 255\n";
+  CHECK_THROWS_AS(decode_png(png_header_only(15000, 15000), "big.png"), limit_error);      // > max_grid_cells
+  const std::string pgm = "P5 15000 15000 255\n";
   CHECK_THROWS_AS(decode_pgm(std::vector<unsigned char>(pgm.begin(), pgm.end()), "big.pgm"), limit_error);
   // A grid built in code is checked by the segmenter.
-  const OccupancyGrid too_big(7100, 7100, 0.05, {}, CellState::occupied);
+  static_assert(14200LL * 14200 > max_grid_cells);
+  const OccupancyGrid too_big(14200, 14200, 0.05, {}, CellState::occupied);
   CHECK_THROWS_WITH_AS(VoronoiSegmenter{}.segment(too_big), doctest::Contains("max_grid_cells"), limit_error);
 }
 

@@ -47,10 +47,12 @@ struct BoundaryParams {
   double min_traced_width_m = 0.0;
   /// Most Voronoi input segments accepted; beyond, segmenting throws `limit_error` instead of
   /// running for minutes. The Voronoi builder costs about 16 000 instructions per segment
-  /// (callgrind, lab_b; 59 000 with Boost's own circle events), so roughly 1.5 s at the limit on
-  /// the CI machine; the shared maps need at most 4994, a 100 m
-  /// synthetic robot map with noise (`areamatch generate --width 100 --height 100 --seed 3`) 25 604.
-  std::size_t max_segments = 250'000;
+  /// (callgrind, lab_b; 59 000 with Boost's own circle events) and its diagram ~700 bytes, so
+  /// roughly 6 s and 0.7 GB at the limit on the CI machine. The shared maps need at most 4994, a
+  /// 100 m synthetic robot map with noise (`areamatch generate --width 100 --height 100 --seed 3`)
+  /// 25 604, the 400 × 300 m one turned by 37° (`--width 400 --height 300 --seed 7`) 331 748: the
+  /// limit follows `max_grid_cells`, which allows floors of that size.
+  std::size_t max_segments = 1'000'000;
 
   void validate() const {
     detail::require_non_negative(simplify_tolerance_m, "BoundaryParams::simplify_tolerance_m");
