@@ -858,6 +858,9 @@ TEST_CASE("label images: 16 bits while the labels fit, 32 once one does not, the
   CHECK(narrow != LabelImage{-1, 0});
   CHECK(LabelImage(std::vector<int>{5, 100000}).bytes_per_cell() == 4);
   CHECK(LabelImage().empty());
+  LabelImage counted;
+  counted.assign(5, 3);  // a count and a value, not an iterator pair
+  CHECK(counted.to_vector() == std::vector<int>(5, 3));
 }
 
 TEST_CASE("a segmentation's labels take 2 bytes a cell, the same with its details or without") {

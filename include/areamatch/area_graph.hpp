@@ -14,6 +14,7 @@
 #include <initializer_list>
 #include <iterator>
 #include <string>
+#include <type_traits>
 #include <vector>
 
 namespace areamatch {
@@ -97,7 +98,7 @@ class LabelImage {
     if (is_wide_) wide_.assign(count, value);
     else narrow_.assign(count, static_cast<std::int16_t>(value));
   }
-  template <class Iterator>
+  template <class Iterator, class = std::enable_if_t<!std::is_integral_v<Iterator>>>
   void assign(Iterator first, Iterator last) {
     const std::vector<int> values(first, last);
     const auto [low, high] = std::minmax_element(values.begin(), values.end());
