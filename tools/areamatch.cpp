@@ -536,9 +536,10 @@ areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& 
 
 areamatch::GreyImage label_image(const areamatch::AreaGraph& graph) {
   areamatch::GreyImage labels(graph.grid.width, graph.grid.height, 65535);
-  for (std::size_t i = 0; i < labels.values.size(); ++i) {
-    labels.values[i] = static_cast<std::uint16_t>(std::min(graph.labels[i] + 1, 65535));
-  }
+  graph.labels.for_each_run([&](std::size_t first, std::size_t last, int label) {
+    std::fill(labels.values.begin() + static_cast<std::ptrdiff_t>(first), labels.values.begin() + static_cast<std::ptrdiff_t>(last),
+              static_cast<std::uint16_t>(std::min(label + 1, 65535)));
+  });
   return labels;
 }
 

@@ -18,6 +18,7 @@
 #include <array>
 #include <cmath>
 #include <cstdint>
+#include <numeric>
 #include <string>
 #include <vector>
 
@@ -189,18 +190,25 @@ inline void draw_skeleton(RgbImage& image, const Skeleton& skeleton, const Rgb& 
   }
 }
 
+/// Tints the cells of the listed areas, each in the colour of its partner `colour_of[label]`
+/// (no tint where that is −1).
+inline void tint_areas(RgbImage& image, const AreaGraph& graph, const std::vector<int>& colour_of) {
+  const auto width = static_cast<std::size_t>(image.width);
+  graph.labels.for_each_run([&](std::size_t first, std::size_t last, int label) {
+    if (label < 0 || colour_of[static_cast<std::size_t>(label)] < 0) return;
+    const Rgb c = area_color(colour_of[static_cast<std::size_t>(label)]);
+    for (std::size_t i = first; i < last; ++i) image.set(static_cast<int>(i % width), static_cast<int>(i / width), c[0], c[1], c[2]);
+  });
+}
+
 /// The map with every area in its own colour, passages as lines across their openings with a dot
 /// whose size shows the width, and the skeleton when given. Free cells in no area stay white.
 inline RgbImage render_area_graph(const OccupancyGrid& grid, const AreaGraph& graph, const MapColors& colors = {},
                                   const Skeleton* skeleton = nullptr) {
   RgbImage image = render_grid(grid, colors);
-  for (int row = 0; row < grid.height(); ++row)
-    for (int col = 0; col < grid.width(); ++col) {
-      const int label = graph.labels.empty() ? -1 : graph.labels[grid.index(col, row)];
-      if (label < 0) continue;
-      const Rgb c = area_color(label);
-      image.set(col, row, c[0], c[1], c[2]);
-    }
+  std::vector<int> all(graph.areas.size());
+  std::iota(all.begin(), all.end(), 0);
+  tint_areas(image, graph, all);
   if (skeleton) draw_skeleton(image, *skeleton);
   const Rgb passage_color{20, 20, 160};
   for (const auto& p : graph.passages) {
@@ -208,18 +216,6 @@ inline RgbImage render_area_graph(const OccupancyGrid& grid, const AreaGraph& gr
     draw_world_dot(image, grid, p.position, std::max(1.5, 0.25 * p.width_m / grid.resolution()), passage_color);
   }
   return image;
-}
-
-/// Tints the cells of the listed areas, each in the colour of its partner `colour_of[label]`
-/// (no tint where that is −1).
-inline void tint_areas(RgbImage& image, const AreaGraph& graph, const std::vector<int>& colour_of) {
-  for (std::size_t i = 0; i < graph.labels.size(); ++i) {
-    const int label = graph.labels[i];
-    if (label < 0 || colour_of[static_cast<std::size_t>(label)] < 0) continue;
-    const Rgb c = area_color(colour_of[static_cast<std::size_t>(label)]);
-    image.set(static_cast<int>(i % static_cast<std::size_t>(image.width)),
-              static_cast<int>(i / static_cast<std::size_t>(image.width)), c[0], c[1], c[2]);
-  }
 }
 
 /// A match at a glance: the destination map with its matched areas tinted and the source map's

@@ -167,10 +167,12 @@ inline std::vector<int> correspondence_labels(const AreaGraph& source, const std
   std::vector<int> dest_of(source.areas.size(), -1);
   for (const auto& p : pairs) dest_of[static_cast<std::size_t>(p.source)] = p.dest;
   std::vector<int> out(source.labels.size(), 0);
-  for (std::size_t k = 0; k < out.size(); ++k) {
-    const int label = source.labels[k];
-    if (label >= 0 && dest_of[static_cast<std::size_t>(label)] >= 0) out[k] = dest_of[static_cast<std::size_t>(label)] + 1;
-  }
+  source.labels.for_each_run([&](std::size_t first, std::size_t last, int label) {
+    if (label >= 0 && dest_of[static_cast<std::size_t>(label)] >= 0) {
+      std::fill(out.begin() + static_cast<std::ptrdiff_t>(first), out.begin() + static_cast<std::ptrdiff_t>(last),
+                dest_of[static_cast<std::size_t>(label)] + 1);
+    }
+  });
   return out;
 }
 

@@ -22,12 +22,13 @@ namespace areamatch {
 namespace detail {
 
 /// The cells within `bounds` on the edge of a region (a cell inside with a 4-neighbour outside
-/// or off the grid), as row-major indices in scan order. `inside(index)` tells whether a cell
-/// is in the region; it is asked once per cell of `bounds` and the ring around it (the
-/// neighbours of border cells count whether or not they lie in `bounds`), then the edge test
-/// reads a mask with a false border instead of checking the grid's bounds four times a cell.
-template <class Inside>
-std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds, Inside inside) {
+/// or off the grid), as row-major indices in scan order. `fill_row(first, last, out)` writes 1
+/// for the cells [first, last) (row-major indices, within one row) that are in the region and 0
+/// for the others; it is asked for each row of `bounds` and the ring around it (the neighbours
+/// of border cells count whether or not they lie in `bounds`), then the edge test reads a mask
+/// with a false border instead of checking the grid's bounds four times a cell.
+template <class FillRow>
+std::vector<std::size_t> edge_cells_by_rows(const GridInfo& g, const PixelBounds& bounds, FillRow fill_row) {
   std::vector<std::size_t> out;
   if (bounds.empty()) return out;
   const int x0 = bounds.col0 - 1, y0 = bounds.row0 - 1;
@@ -39,8 +40,10 @@ std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds
     if (y < 0 || y >= g.height) continue;
     std::uint8_t* row = mask.data() + static_cast<std::size_t>(my) * static_cast<std::size_t>(mask_w);
     const std::size_t grid_row = static_cast<std::size_t>(y) * width;
-    const int mx_end = std::min(mask_w, g.width - x0);
-    for (int mx = std::max(0, -x0); mx < mx_end; ++mx) row[mx] = inside(grid_row + static_cast<std::size_t>(x0 + mx)) ? 1 : 0;
+    const int mx_begin = std::max(0, -x0), mx_end = std::min(mask_w, g.width - x0);
+    if (mx_begin < mx_end) {
+      fill_row(grid_row + static_cast<std::size_t>(x0 + mx_begin), grid_row + static_cast<std::size_t>(x0 + mx_end), row + mx_begin);
+    }
   }
   for (int my = 1; my + 1 < mask_h; ++my) {
     const std::uint8_t* row = mask.data() + static_cast<std::size_t>(my) * static_cast<std::size_t>(mask_w);
@@ -62,6 +65,14 @@ std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds
   }
   out.shrink_to_fit();  // kept with the match data: without the growth's slack (up to half)
   return out;
+}
+
+/// `edge_cells_by_rows` with `inside(index)` asked once per cell.
+template <class Inside>
+std::vector<std::size_t> edge_cells(const GridInfo& g, const PixelBounds& bounds, Inside inside) {
+  return edge_cells_by_rows(g, bounds, [&](std::size_t first, std::size_t last, std::uint8_t* out) {
+    for (std::size_t i = first; i < last; ++i) *out++ = inside(i) ? 1 : 0;
+  });
 }
 
 /// Visits the edge cells `cells` (from `edge_cells`: in scan order, so the first and last are in
@@ -154,7 +165,11 @@ inline std::vector<Eigen::Vector2d> free_sides(const OccupancyGrid& grid, const 
 /// Edge points of the area-covered free space.
 inline std::vector<Eigen::Vector2d> area_boundary_points(const AreaGraph& graph, double spacing_m,
                                                          std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
-  const auto cells = edge_cells(graph.grid, label_bounds(graph), [&](std::size_t i) { return graph.labels[i] >= 0; });
+  const auto cells = edge_cells_by_rows(graph.grid, label_bounds(graph), [&](std::size_t first, std::size_t last, std::uint8_t* out) {
+    graph.labels.for_each_run(first, last, [&](std::size_t begin, std::size_t end, int label) {
+      std::fill(out + (begin - first), out + (end - first), label >= 0 ? 1 : 0);
+    });
+  });
   return boundary_points(graph.grid, cells, spacing_m, max_points);
 }
 

@@ -130,34 +130,58 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
 
   r.labels.assign(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height), -1);
   r.area_cells.resize(graph.areas.size());
-  std::vector<std::pair<int, int>> votes;  // (area id, map cells) within one raster cell
+  // The map columns [first, end) of each raster column, and the raster column of each map column.
+  const int span = bounds.col1 - bounds.col0;
+  std::vector<int> col_first(static_cast<std::size_t>(r.width)), col_end(static_cast<std::size_t>(r.width));
+  std::vector<int> col_of(static_cast<std::size_t>(std::max(span, 0)), -1);
+  for (int col = 0; col < r.width; ++col) {
+    col_first[col] = std::max(bounds.col0, bounds.col0 + static_cast<int>(std::ceil(col * factor - 0.5)));
+    col_end[col] = std::min(bounds.col1, bounds.col0 + static_cast<int>(std::ceil((col + 1) * factor - 0.5)));
+    for (int x = col_first[col]; x < col_end[col]; ++x) col_of[static_cast<std::size_t>(x - bounds.col0)] = col;
+  }
+  // Per raster column of the current raster row: (area id, map cells) and the labelled cells.
+  std::vector<std::vector<std::pair<int, int>>> votes(static_cast<std::size_t>(r.width));
+  std::vector<int> labelled(static_cast<std::size_t>(r.width));
+  auto vote = [&](int col, int label, int count) {
+    auto& list = votes[static_cast<std::size_t>(col)];
+    labelled[static_cast<std::size_t>(col)] += count;
+    if (!list.empty() && list.back().first == label) {  // the usual case: same as the last one
+      list.back().second += count;
+      return;
+    }
+    auto it = std::find_if(list.begin(), list.end(), [&](const auto& v) { return v.first == label; });
+    if (it == list.end()) list.emplace_back(label, count);
+    else it->second += count;
+  };
   for (int row = 0; row < r.height; ++row) {
-    const int row0 = bounds.row0 + static_cast<int>(std::ceil(row * factor - 0.5));
+    const int row0 = std::max(bounds.row0, bounds.row0 + static_cast<int>(std::ceil(row * factor - 0.5)));
     const int row1 = std::min(bounds.row1, bounds.row0 + static_cast<int>(std::ceil((row + 1) * factor - 0.5)));
+    for (auto& list : votes) list.clear();
+    std::fill(labelled.begin(), labelled.end(), 0);
+    // The map rows a run at a time (the labels are held as runs), split at the raster columns.
+    for (int y = row0; y < row1; ++y) {
+      const std::size_t base = static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width);
+      graph.labels.for_each_run(base + static_cast<std::size_t>(bounds.col0), base + static_cast<std::size_t>(bounds.col1),
+                                [&](std::size_t first, std::size_t last, int label) {
+                                  if (label < 0) return;
+                                  for (int x = static_cast<int>(first - base), end = static_cast<int>(last - base); x < end;) {
+                                    const int col = col_of[static_cast<std::size_t>(x - bounds.col0)];
+                                    if (col < 0) {
+                                      ++x;
+                                      continue;
+                                    }
+                                    const int stop = std::min(end, col_end[static_cast<std::size_t>(col)]);
+                                    vote(col, label, stop - x);
+                                    x = stop;
+                                  }
+                                });
+    }
     for (int col = 0; col < r.width; ++col) {
-      const int col0 = bounds.col0 + static_cast<int>(std::ceil(col * factor - 0.5));
-      const int col1 = std::min(bounds.col1, bounds.col0 + static_cast<int>(std::ceil((col + 1) * factor - 0.5)));
-      votes.clear();
-      int cells = 0, labelled = 0;
-      for (int y = std::max(bounds.row0, row0); y < row1; ++y) {
-        for (int x = std::max(bounds.col0, col0); x < col1; ++x) {
-          ++cells;
-          const int label = graph.labels[static_cast<std::size_t>(y) * static_cast<std::size_t>(g.width) +
-                                         static_cast<std::size_t>(x)];
-          if (label < 0) continue;
-          ++labelled;
-          if (!votes.empty() && votes.back().first == label) {  // the usual case: same as the last one
-            ++votes.back().second;
-            continue;
-          }
-          auto it = std::find_if(votes.begin(), votes.end(), [&](const auto& v) { return v.first == label; });
-          if (it == votes.end()) votes.emplace_back(label, 1);
-          else ++it->second;
-        }
-      }
-      if (cells == 0 || 2 * labelled < cells) continue;
+      const int cells = std::max(0, row1 - row0) * std::max(0, col_end[col] - col_first[col]);
+      const auto& list = votes[static_cast<std::size_t>(col)];
+      if (cells == 0 || 2 * labelled[static_cast<std::size_t>(col)] < cells) continue;
       // Most map cells wins; the lower id on ties, so the result does not depend on scan order.
-      auto best = std::max_element(votes.begin(), votes.end(), [](const auto& a, const auto& b) {
+      auto best = std::max_element(list.begin(), list.end(), [](const auto& a, const auto& b) {
         return a.second < b.second || (a.second == b.second && a.first > b.first);
       });
       const int label = best->first;

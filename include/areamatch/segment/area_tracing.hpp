@@ -78,29 +78,33 @@ struct LatticeFrame {
 };
 
 /// Step 8: the final labels (the runs hold them) onto the whole grid, row by row, into the
-/// graph's compact `LabelImage`; the areas are traced on it next. The grid's free cells are
+/// graph's run-length `LabelImage`; the areas are traced on it next. The grid's free cells are
 /// counted in the same pass, for `covered_fraction` (a separate count reread the whole grid).
-inline void write_labels(const OccupancyGrid& grid, const FreeSpace& space, const LabelRuns& labelled, int area_count,
-                         AreaGraph& graph) {
+inline void write_labels(const OccupancyGrid& grid, const FreeSpace& space, const LabelRuns& labelled, AreaGraph& graph) {
   constexpr auto free_byte = static_cast<std::uint8_t>(CellState::free);
   std::size_t labelled_cells = 0, free_cells = 0;
-  graph.labels.assign(grid.cells().size(), -1, area_count - 1);
+  graph.labels.clear();
   for (int gr = 0; gr < grid.height(); ++gr) {
-    const std::size_t row_start = grid.index(0, gr);
     const CellState* state = &grid.cells()[grid.index(0, gr)];
     free_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state), static_cast<std::size_t>(grid.width()), free_byte);
+    int written = 0;  // cells of this row in the image so far
     const int r = gr - space.offset_row;
-    if (r < 0 || r >= space.height) continue;
-    for (std::size_t k = labelled.row_start[r]; k < labelled.row_start[r + 1]; ++k) {
-      const LabelRun& run = labelled.runs[k];
-      if (run.label < 0) continue;
-      const int first = std::max(run.begin + space.offset_col, 0);
-      const int last = std::min(run.end + space.offset_col, grid.width());
-      if (first >= last) continue;
-      graph.labels.fill(row_start + static_cast<std::size_t>(first), row_start + static_cast<std::size_t>(last), run.label);
-      labelled_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
+    if (r >= 0 && r < space.height) {
+      for (std::size_t k = labelled.row_start[r]; k < labelled.row_start[r + 1]; ++k) {
+        const LabelRun& run = labelled.runs[k];
+        if (run.label < 0) continue;
+        const int first = std::max(run.begin + space.offset_col, 0);
+        const int last = std::min(run.end + space.offset_col, grid.width());
+        if (first >= last) continue;
+        graph.labels.append(static_cast<std::size_t>(first - written), -1);
+        graph.labels.append(static_cast<std::size_t>(last - first), run.label);
+        written = last;
+        labelled_cells += count_byte_equal(reinterpret_cast<const std::uint8_t*>(state + first), static_cast<std::size_t>(last - first), free_byte);
+      }
     }
+    graph.labels.append(static_cast<std::size_t>(grid.width() - written), -1);
   }
+  graph.labels.shrink_to_fit();
   graph.covered_fraction = free_cells ? static_cast<double>(labelled_cells) / free_cells : 0.0;
 }
 

@@ -85,7 +85,7 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
   const detail::PieceAreas areas = detail::merge_small_pieces(runs, pieces, min_cells);
   const std::vector<int> area_of_region = detail::area_of_regions(rooms.region_count(), pieces, areas.area_of_piece);
 
-  detail::write_labels(grid, space, runs, areas.area_count, graph);
+  detail::write_labels(grid, space, runs, graph);
   detail::trace_areas(runs, space, res, to_world, areas.area_count, graph);
   detail::measure_areas(rooms, area_of_region, res, params, graph);
   detail::add_passages(rooms, area_of_region, res, to_world, graph);
