@@ -73,33 +73,44 @@ areamatch::OccupancyGrid columns_of(const areamatch::OccupancyGrid& grid, int fi
   return out;
 }
 
-void pair(benchmark::State& state, const Floor& floor) {
-  const areamatch::Matcher<> matcher;
-  areamatch::MatchResult result;
+/// The stages' times of a match, summed over a benchmark's iterations.
+struct StageTimes {
   double segment_robot = 0, segment_layout = 0, prepare = 0, pairs = 0, selection = 0;
-  for (auto _ : state) {
-    result = matcher.match(floor.robot, floor.layout);
-    benchmark::DoNotOptimize(result.score);
-    const auto& t = result.timings;
+  void add(const areamatch::MatchTimings& t) {
     segment_robot += t.segment_source_s;
     segment_layout += t.segment_dest_s;
     prepare += t.prepare_s;
     pairs += t.features_s + t.hypotheses_s + t.clustering_s;
     selection += t.selection_s;
   }
+  /// Per-iteration milliseconds as counters.
+  void report(benchmark::State& state) const {
+    const double ms = 1000.0 / static_cast<double>(state.iterations());
+    state.counters["segment_robot_ms"] = ms * segment_robot;
+    state.counters["segment_layout_ms"] = ms * segment_layout;
+    state.counters["prepare_ms"] = ms * prepare;
+    state.counters["pairs_ms"] = ms * pairs;
+    state.counters["selection_ms"] = ms * selection;
+  }
+};
+
+void pair(benchmark::State& state, const Floor& floor) {
+  const areamatch::Matcher<> matcher;
+  areamatch::MatchResult result;
+  StageTimes stages;
+  for (auto _ : state) {
+    result = matcher.match(floor.robot, floor.layout);
+    benchmark::DoNotOptimize(result.score);
+    stages.add(result.timings);
+  }
   if (!result.ok) state.SkipWithError(("not matched: " + result.reason).c_str());
-  const double ms = 1000.0 / static_cast<double>(state.iterations());
   const double m2 = floor.width_m * floor.height_m;
   state.counters["m2"] = m2;
   state.counters["areas_robot"] = static_cast<double>(result.statistics.source_areas);
   state.counters["areas_layout"] = static_cast<double>(result.statistics.dest_areas);
   state.counters["us_per_m2"] = per_m2(m2);
   state.counters["us_per_mapped_m2"] = per_m2(floor.robot_mapped_m2);
-  state.counters["segment_robot_ms"] = ms * segment_robot;
-  state.counters["segment_layout_ms"] = ms * segment_layout;
-  state.counters["prepare_ms"] = ms * prepare;
-  state.counters["pairs_ms"] = ms * pairs;
-  state.counters["selection_ms"] = ms * selection;
+  stages.report(state);
 }
 
 }  // namespace areamatch_bench::growth
@@ -131,14 +142,17 @@ void register_growth() {
     const areamatch::Matcher<> matcher;
     const auto layout = matcher.prepare(floor.layout);
     areamatch::MatchResult result;
+    StageTimes stages;
     for (auto _ : state) {
       result = matcher.match(floor.robot, layout);
       benchmark::DoNotOptimize(result.score);
+      stages.add(result.timings);
     }
     if (!result.ok) state.SkipWithError(("not matched: " + result.reason).c_str());
     state.counters["mapped_m2"] = floor.robot_mapped_m2;
     state.counters["areas_robot"] = static_cast<double>(result.statistics.source_areas);
     state.counters["us_per_mapped_m2"] = per_m2(floor.robot_mapped_m2);
+    stages.report(state);
   })->Unit(benchmark::kMillisecond)->UseRealTime();
 }
 
