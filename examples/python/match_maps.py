@@ -35,7 +35,7 @@ def main(argv=None):
                                                    explored_fraction=0.6, wall_noise_m=0.02)
         source, dest = robot.map, building.layout
 
-    result = areamatch.match(source, dest, allow_reflection=args.allow_reflection, door_width=args.door_width)
+    result = areamatch.match(source, dest, allow_reflection=args.allow_reflection, door_width_m=args.door_width)
     print(f"{'matched' if result.ok else 'no match'}: rotation {result.rotation_deg:.2f} deg, "
           f"translation ({result.translation_m[0]:.3f}, {result.translation_m[1]:.3f}) m, "
           f"p_correct {result.p_correct:.3f}, {len(result.matched_areas)} matched areas")

@@ -85,10 +85,10 @@ Result.matched_areas = property(
     doc="Room correspondences (list of MatchedArea: source, dest, overlap, iou, local_rotation_deg, ...).")
 
 
-def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agreement=None,
-          gate_max_lower_walls=None, gate_min_overlap_m2=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual=1.0,
+def merge(maps, *, reference=0, door_width_m=None, allow_reflection=False, min_agreement=None,
+          gate_max_lower_walls=None, gate_min_overlap_m2=None, min_p_correct=None, resolution=None, wall_share=0.5, max_residual_m=1.0,
           until_connected=False, same_side=True, threads=DEFAULT_THREADS, names=None, build_merged_map=True, non_rigid=False,
-          control_spacing=None, bend_length=None):
+          control_spacing_m=None, bend_length_m=None):
     """Places several maps of one building in the frame of maps[reference] and fuses them.
 
     As `areamatch merge`: every pair matched (or only until connected), the poses fitted to the
@@ -96,7 +96,7 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
     `maps`: Map objects, prepared here `threads` at a time (maps prepared already: Matcher.merge).
     `same_side`: refine each accepted match by ICP that pairs walls only with walls facing the
     same way (MergeParams::refine_same_side). `non_rigid`: bend each map onto the reference's walls
-    before fusing (`areamatch merge --non-rigid`; `control_spacing`, `bend_length` in metres shape
+    before fusing (`areamatch merge --non-rigid`; `control_spacing_m`, `bend_length_m` in metres shape
     the warps). Returns a MergeResult; `names` label the maps in its JSON and its picture's legend
     (default "map i"). `threads`: as the `areamatch` program, DEFAULT_THREADS (2); any count gives
     the same result.
@@ -104,15 +104,15 @@ def merge(maps, *, reference=0, door_width=None, allow_reflection=False, min_agr
     maps = list(maps)
     if not all(isinstance(m, Map) for m in maps):
         raise TypeError("merge: maps must be areamatch.Map objects (for prepared maps call Matcher.merge)")
-    matcher = Matcher(door_width=door_width, allow_reflection=allow_reflection, min_agreement=min_agreement,
+    matcher = Matcher(door_width_m=door_width_m, allow_reflection=allow_reflection, min_agreement=min_agreement,
                       gate_max_lower_walls=gate_max_lower_walls, gate_min_overlap_m2=gate_min_overlap_m2,
                       min_p_correct=min_p_correct)
     maps = matcher.prepare_all(maps, threads=threads)
     return matcher.merge(maps, reference=reference, resolution=resolution, wall_share=wall_share,
-                         max_residual=max_residual, until_connected=until_connected, same_side=same_side,
+                         max_residual_m=max_residual_m, until_connected=until_connected, same_side=same_side,
                          threads=threads,
                          names=list(names or []), build_merged_map=build_merged_map, non_rigid=non_rigid,
-                         control_spacing=control_spacing, bend_length=bend_length)
+                         control_spacing_m=control_spacing_m, bend_length_m=bend_length_m)
 
 
 # A pybind11 function's __doc__ opens with its signature; this Python one's does too.

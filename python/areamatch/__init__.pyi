@@ -17,9 +17,9 @@ class MatchedArea(Dict[str, Any]):
     local_translation_m: List[float]
     wall_agreement: float
 
-def merge(maps: Sequence[Map], *, reference: int = ..., door_width: Optional[float] = ..., allow_reflection: bool = ...,
+def merge(maps: Sequence[Map], *, reference: int = ..., door_width_m: Optional[float] = ..., allow_reflection: bool = ...,
           min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
           gate_min_overlap_m2: Optional[float] = ..., min_p_correct: Optional[float] = ..., resolution: Optional[float] = ...,
-          wall_share: float = ..., max_residual: float = ..., until_connected: bool = ..., same_side: bool = ..., threads: int = ...,
+          wall_share: float = ..., max_residual_m: float = ..., until_connected: bool = ..., same_side: bool = ..., threads: int = ...,
           names: Optional[Sequence[str]] = ..., build_merged_map: bool = ..., non_rigid: bool = ...,
-          control_spacing: Optional[float] = ..., bend_length: Optional[float] = ...) -> MergeResult: ...
+          control_spacing_m: Optional[float] = ..., bend_length_m: Optional[float] = ...) -> MergeResult: ...

@@ -17,6 +17,7 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -166,12 +167,13 @@ am::MapPairOptions pair_options(std::optional<double> door_width, std::optional<
                                 std::optional<std::size_t> k, std::optional<double> min_score,
                                 std::optional<double> min_agreement, std::optional<double> gate_max_lower_walls,
                                 std::optional<double> gate_min_overlap_m2, std::optional<double> min_p_correct, bool paper,
-                                unsigned threads) {
+                                unsigned threads,
+                                std::array<const char*, 3> names = {"door_width_m", "source_door_width_m", "dest_door_width_m"}) {
   if (door_width && (source_door_width || dest_door_width)) {
-    throw am::parameter_error("give either door_width or source_door_width/dest_door_width, not both");
+    throw am::parameter_error(std::string("give either door_width_m or ") + names[1] + "/" + names[2] + ", not both");
   }
-  for (const auto& [value, name] : {std::pair{door_width, "door_width"}, std::pair{source_door_width, "source_door_width"},
-                                    std::pair{dest_door_width, "dest_door_width"}}) {
+  for (const auto& [value, name] : {std::pair{door_width, names[0]}, std::pair{source_door_width, names[1]},
+                                    std::pair{dest_door_width, names[2]}}) {
     if (value) am::detail::require_positive(*value, name);
   }
   if (k && (*k < 1 || *k > 1000)) throw am::parameter_error("k must be in 1..1000, got " + std::to_string(*k));
@@ -262,7 +264,7 @@ MergeRun run_merge(const DefaultMatcher& matcher, std::vector<Prepared> maps, st
   am::MergeParams params;
   params.non_rigid = non_rigid;
   if (!non_rigid && (control_spacing || bend_length)) {
-    throw am::parameter_error("control_spacing and bend_length shape the warps of non_rigid=True; set non_rigid=True too");
+    throw am::parameter_error("control_spacing_m and bend_length_m shape the warps of non_rigid=True; set non_rigid=True too");
   }
   if (control_spacing) params.warp.control_spacing_m = *control_spacing;
   if (bend_length) params.warp.bend_length_m = *bend_length;
@@ -467,11 +469,11 @@ void bind_area_graph(py::module_& m) {
   m.def(
       "segment",
       [](const am::OccupancyGrid& grid, std::optional<double> door_width) {
-        if (door_width) am::detail::require_positive(*door_width, "door_width");
+        if (door_width) am::detail::require_positive(*door_width, "door_width_m");
         return am::detail::segmenter_with_door(am::VoronoiSegmenter{}, door_width).segment(grid);
       },
-      py::arg("map"), py::arg("door_width") = py::none(), release_gil(),
-      "The map's Area Graph (door_width in metres: openings narrower than it are doors; default 1.2).");
+      py::arg("map"), py::arg("door_width_m") = py::none(), release_gil(),
+      "The map's Area Graph (door_width_m: openings narrower than it are doors; default 1.2 m).");
 
 }
 
@@ -631,7 +633,7 @@ void bind_match(py::module_& m) {
                         std::nullopt};
       },
       py::arg("source"), py::arg("dest"), py::kw_only(), py::arg("allow_reflection") = false, py::arg("estimate_scale") = false,
-      py::arg("door_width") = py::none(), py::arg("source_door_width") = py::none(), py::arg("dest_door_width") = py::none(),
+      py::arg("door_width_m") = py::none(), py::arg("source_door_width_m") = py::none(), py::arg("dest_door_width_m") = py::none(),
       py::arg("k") = py::none(), py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
       py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
       py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = am::default_program_threads,
@@ -657,7 +659,7 @@ void bind_matcher(py::module_& m) {
              p.matcher.params.validate();
              return p;
            }),
-           py::kw_only(), py::arg("door_width") = py::none(), py::arg("allow_reflection") = false, py::arg("k") = py::none(),
+           py::kw_only(), py::arg("door_width_m") = py::none(), py::arg("allow_reflection") = false, py::arg("k") = py::none(),
            py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
            py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
            py::arg("min_p_correct") = py::none(), py::arg("threads") = am::default_program_threads)
@@ -689,9 +691,9 @@ void bind_matcher(py::module_& m) {
                              same_side, threads, std::move(names), build_merged_map, non_rigid, control_spacing, bend_length);
           },
           py::arg("maps"), py::kw_only(), py::arg("reference") = py::none(), py::arg("resolution") = py::none(),
-          py::arg("wall_share") = 0.5, py::arg("max_residual") = 1.0, py::arg("until_connected") = false,
+          py::arg("wall_share") = 0.5, py::arg("max_residual_m") = 1.0, py::arg("until_connected") = false,
           py::arg("same_side") = true, py::arg("threads") = am::default_program_threads, py::arg("names") = std::vector<std::string>{}, py::arg("build_merged_map") = true,
-          py::arg("non_rigid") = false, py::arg("control_spacing") = py::none(), py::arg("bend_length") = py::none(),
+          py::arg("non_rigid") = false, py::arg("control_spacing_m") = py::none(), py::arg("bend_length_m") = py::none(),
           release_gil(), "Places prepared maps in the frame of maps[reference] and fuses them (as `areamatch merge`).");
 
 }
@@ -810,10 +812,10 @@ void bind_assess(py::module_& m) {
       .def(
           "picture",
           [](const AssessRun& a, double error_scale) {
-            am::detail::require_positive(error_scale, "error_scale");
+            am::detail::require_positive(error_scale, "error_scale_m");
             return am::render_assessment(a.run.source, a.run.source_graph, a.run.dest, a.assessment, error_scale);
           },
-          py::arg("error_scale") = 0.5, release_gil(), "the picture of `areamatch assess --png`")
+          py::arg("error_scale_m") = 0.5, release_gil(), "the picture of `areamatch assess --png`")
       .def("__repr__", [](const AssessRun& a) {
         const auto& r = a.assessment;
         if (!r.ok) return std::string("<areamatch.Assessment not placed>");
@@ -830,7 +832,8 @@ void bind_assess(py::module_& m) {
          std::optional<double> min_agreement, std::optional<double> min_p_correct, std::optional<double> control_spacing,
          std::optional<double> bend_length) {
         const auto options = pair_options(door_width, map_door_width, reference_door_width, allow_reflection, false, std::nullopt,
-                                           std::nullopt, min_agreement, std::nullopt, std::nullopt, min_p_correct, false, 1);
+                                           std::nullopt, min_agreement, std::nullopt, std::nullopt, min_p_correct, false, 1,
+                                           {"door_width_m", "map_door_width_m", "reference_door_width_m"});
         am::AssessParams params;
         params.assume_same_building = same_building;
         if (control_spacing) params.warp.control_spacing_m = *control_spacing;
@@ -843,9 +846,9 @@ void bind_assess(py::module_& m) {
         return out;
       },
       py::arg("map"), py::arg("reference"), py::kw_only(), py::arg("same_building") = false, py::arg("allow_reflection") = false,
-      py::arg("door_width") = py::none(), py::arg("map_door_width") = py::none(), py::arg("reference_door_width") = py::none(),
-      py::arg("min_agreement") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("control_spacing") = py::none(),
-      py::arg("bend_length") = py::none(), release_gil(),
+      py::arg("door_width_m") = py::none(), py::arg("map_door_width_m") = py::none(), py::arg("reference_door_width_m") = py::none(),
+      py::arg("min_agreement") = py::none(), py::arg("min_p_correct") = py::none(), py::arg("control_spacing_m") = py::none(),
+      py::arg("bend_length_m") = py::none(), release_gil(),
       "Assesses map against reference as `areamatch assess` (same options, same numbers): wall error both ways, the warp's "
       "displacement, broken pieces, coverage, topology. A map that cannot be placed gives ok False with the reason, unless "
       "same_building.");

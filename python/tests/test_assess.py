@@ -46,9 +46,9 @@ def test_assess_refuses_another_building_unless_told(robot):
 
 def test_assess_option_errors(robot, building):
     with pytest.raises(ValueError, match="bend_length"):
-        areamatch.assess(robot.map, building.layout, bend_length=0.0)
+        areamatch.assess(robot.map, building.layout, bend_length_m=0.0)
     with pytest.raises(ValueError, match="door_width"):
-        areamatch.assess(robot.map, building.layout, door_width=-1.0)
+        areamatch.assess(robot.map, building.layout, door_width_m=-1.0)
 
 
 def test_assess_equals_the_cli_json(robot, building, cli, tmp_path):

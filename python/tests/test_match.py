@@ -37,7 +37,7 @@ def test_segment_errors_and_empty_maps():
     graph = areamatch.segment(walls)
     assert len(graph.areas) == 0 and "no free cells" in graph.reason
     with pytest.raises(ValueError, match="door_width"):
-        areamatch.segment(walls, door_width=-1.0)
+        areamatch.segment(walls, door_width_m=-1.0)
 
 
 def test_match_finds_the_truth(robot, building):
@@ -126,7 +126,7 @@ def test_threads_default_as_the_program():
 
 def test_match_option_errors(robot, building):
     with pytest.raises(ValueError, match="not both"):
-        areamatch.match(robot.map, building.layout, door_width=1.0, source_door_width=1.0)
+        areamatch.match(robot.map, building.layout, door_width_m=1.0, source_door_width_m=1.0)
     with pytest.raises(ValueError, match="k must be"):
         areamatch.match(robot.map, building.layout, k=0)
     with pytest.raises(TypeError):
@@ -195,7 +195,7 @@ def test_shared_pairs_equal_the_cli(shared_dir, cli):
         assert out.returncode in (0, 1), out.stderr
         door = float(options[-1]) if "--door-width" in options else None
         python = areamatch.match(areamatch.load_map(source), areamatch.load_map(dest),
-                                 allow_reflection="--allow-reflection" in options, door_width=door)
+                                 allow_reflection="--allow-reflection" in options, door_width_m=door)
         assert without_timings(python.to_dict()) == without_timings(json.loads(out.stdout)), pair["name"]
         accepted += python.ok
     assert accepted >= 22

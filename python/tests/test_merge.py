@@ -45,7 +45,7 @@ def test_merge_non_rigid(building):
     import pytest
     maps = [building.layout] + [r.map for r in robot_maps(building, 2)]
     rigid = areamatch.merge(maps)
-    bent = areamatch.merge(maps, non_rigid=True, bend_length=5.0)
+    bent = areamatch.merge(maps, non_rigid=True, bend_length_m=5.0)
     assert rigid.ok and bent.ok
     assert rigid.maps[1]["warp"] is None and bent.maps[0]["warp"] is None
     for placed in bent.maps[1:]:
@@ -55,7 +55,7 @@ def test_merge_non_rigid(building):
     assert bent.to_dict()["merged"]["doubled_wall_cells"] == bent.double_walls["doubled_cells"]
     assert bent.timings["warp_s"] > 0
     with pytest.raises(ValueError, match="non_rigid"):
-        areamatch.merge(maps, bend_length=5.0)
+        areamatch.merge(maps, bend_length_m=5.0)
 
 
 def test_merge_reports_a_stranger(building):

@@ -137,3 +137,27 @@ def test_package_stub_signatures_match_the_python_functions():
                 keyword_only = True
             names.append(p.name)
         assert _stub_signature(fn) == names, f"__init__.pyi {fn.name}{_stub_signature(fn)} != {names}"
+
+
+def test_keywords_with_a_unit_end_in_it():
+    # One naming rule (docs/python.md): a keyword that holds a length, an area or an angle ends in
+    # its unit (_m, _m2, _rad), as the C++ fields do; map_server's `resolution` keeps its name, and
+    # Map.from_occupancy_grid's `width`/`height` are cell counts named as ROS's message names them.
+    import inspect
+    import re
+    measured = re.compile(r"(width|spacing|length|distance|radius|residual|error_scale|translation|rotation|overlap)$")
+    seen = set()
+    for name in dir(_core):
+        obj = getattr(_core, name)
+        members = [obj] + ([getattr(obj, m) for m in vars(obj) if not m.startswith("_") or m == "__init__"]
+                           if inspect.isclass(obj) else [])
+        for member in members:
+            for line in (getattr(member, "__doc__", None) or "").splitlines():
+                m = re.match(r"^(?:\d+\. )?\w+\((.*)\) -> ", line)
+                if m:
+                    seen.update(part.split(":")[0].split("=")[0].strip() for part in _split_top_level(m.group(1)))
+    for fn in (areamatch.merge,):
+        seen.update(inspect.signature(fn).parameters)
+    assert {"door_width_m", "bend_length_m", "control_spacing_m"} <= seen
+    offending = sorted(k for k in seen if measured.search(k) and k not in ("width", "height"))
+    assert not offending, f"keywords with a unit but no unit suffix: {offending}"
