@@ -14,7 +14,9 @@
 
 namespace areamatch {
 
-/// Agreement of the two maps under the result's transform; each in [0, 1], higher is better.
+/// Agreement of the two maps under the result's transform, higher is better: the shares and
+/// agreements in [0, 1] (NaN where a field says so), `overlap_m2` in square metres, and
+/// `turn_margin` a difference of two agreements, in [−1, 1].
 struct MatchEvidence {
   /// Share of the source's free-space edge within `wall_inlier_distance_m` of the destination's
   /// (the whole-map score with the default weights).
