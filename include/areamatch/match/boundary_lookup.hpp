@@ -12,6 +12,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <limits>
 #include <utility>
 #include <vector>
@@ -193,16 +194,20 @@ class BoundaryLookup {
       return std::pair<int, int>{std::min(bx - 1, static_cast<int>((p.x() - lo.x()) / radius)),
                                  std::min(by - 1, static_cast<int>((p.y() - lo.y()) / radius))};
     };
-    std::vector<std::size_t> start(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by) + 1, 0), order(points_.size());
-    std::vector<std::size_t> bucket(points_.size());
-    for (std::size_t i = 0; i < points_.size(); ++i) {
-      const auto [x, y] = bucket_of(points_[i]);
-      bucket[i] = static_cast<std::size_t>(y) * static_cast<std::size_t>(bx) + static_cast<std::size_t>(x);
-      ++start[bucket[i] + 1];
-    }
+    // The points sorted by bucket (counting sort, stable), in 32-bit indices: on a large floor
+    // these arrays were a third of the lookup's memory at 64 bits.
+    if (points_.size() >= std::numeric_limits<std::uint32_t>::max()) throw limit_error("BoundaryLookup: too many points");
+    auto bucket_index = [&](const Eigen::Vector2d& p) {
+      const auto [x, y] = bucket_of(p);
+      return static_cast<std::size_t>(y) * static_cast<std::size_t>(bx) + static_cast<std::size_t>(x);
+    };
+    std::vector<std::uint32_t> start(static_cast<std::size_t>(bx) * static_cast<std::size_t>(by) + 1, 0), order(points_.size());
+    for (const Eigen::Vector2d& p : points_) ++start[bucket_index(p) + 1];
     for (std::size_t b = 0; b + 1 < start.size(); ++b) start[b + 1] += start[b];
-    std::vector<std::size_t> next(start.begin(), start.end() - 1);
-    for (std::size_t i = 0; i < points_.size(); ++i) order[next[bucket[i]]++] = i;
+    {
+      std::vector<std::uint32_t> next(start.begin(), start.end() - 1);
+      for (std::size_t i = 0; i < points_.size(); ++i) order[next[bucket_index(points_[i])]++] = static_cast<std::uint32_t>(i);
+    }
     const double radius2 = radius * radius;
     normals_.assign(points_.size(), Eigen::Vector2d(1.0, 0.0));
     for (std::size_t i = 0; i < points_.size(); ++i) {

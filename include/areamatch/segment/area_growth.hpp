@@ -113,25 +113,40 @@ std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetec
   return barrier_cells;
 }
 
-/// Step 2: grows every region from its skeleton samples, 4-connected: first over the core, then
-/// `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only that
-/// far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
-template <class Label>
-void grow_regions(const FreeSpace& space, const RoomDetection& rooms, int fringe_steps, std::vector<Label>& label,
-                  std::vector<std::uint8_t>& core) {
-  const int W = space.width, H = space.height;
+/// A region's seed: the free cell under one of its skeleton samples (row-major in the mask).
+struct Seed {
+  std::uint32_t cell;
+  int region;
+};
+
+/// Every region's seeds, in sample order (samples off the free space left out): all that growth
+/// reads of the sample graph, so the graph can be let go before the labels are made.
+inline std::vector<Seed> region_seeds(const FreeSpace& space, const RoomDetection& rooms) {
   const SampleGraph& g = rooms.graph;
-  std::vector<std::uint32_t> queue;
+  std::vector<Seed> seeds;
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
     if (region < 0) continue;
     const int c = static_cast<int>(std::floor(g.samples[s].position.x()));
     const int r = static_cast<int>(std::floor(g.samples[s].position.y()));
     if (!space.is_free(c, r)) continue;
-    const std::size_t i = static_cast<std::size_t>(r) * W + c;
-    if (label[i] != unlabelled) continue;  // a barrier, or seeded already
-    label[i] = static_cast<Label>(region);
-    queue.push_back(static_cast<std::uint32_t>(i));
+    seeds.push_back({static_cast<std::uint32_t>(static_cast<std::size_t>(r) * space.width + c), region});
+  }
+  return seeds;
+}
+
+/// Step 2: grows every region from its seeds (`region_seeds`), 4-connected: first over the core,
+/// then `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only
+/// that far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
+template <class Label>
+void grow_regions(const FreeSpace& space, const std::vector<Seed>& seeds, int fringe_steps, std::vector<Label>& label,
+                  std::vector<std::uint8_t>& core) {
+  const int W = space.width, H = space.height;
+  std::vector<std::uint32_t> queue;
+  for (const Seed& seed : seeds) {
+    if (label[seed.cell] != unlabelled) continue;  // a barrier, or seeded already
+    label[seed.cell] = static_cast<Label>(seed.region);
+    queue.push_back(seed.cell);
   }
   const auto neighbour_offset = four_neighbour_offsets(W);
   // Breadth-first growth; into_fringe grows one step (one ring of cells) per call. Over the core,

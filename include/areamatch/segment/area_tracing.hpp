@@ -167,16 +167,34 @@ inline void trace_areas(const LabelRuns& labelled, const FreeSpace& space, doubl
   }
 }
 
-/// Step 10: each area's widest free disc (from its regions' skeleton samples) and its kind: a
-/// corridor when its hull diameter exceeds `corridor_elongation` times that disc's diameter.
-inline void measure_areas(const RoomDetection& rooms, const std::vector<int>& area_of_region, double res,
-                          const AreaParams& params, AreaGraph& graph) {
+/// What steps 10–11 read of the sample graph: each region's widest sample clearance and each
+/// passage's sample (lattice units). Taken before the regions grow, so that the graph (the
+/// largest piece of room detection on a large floor) can be let go first.
+struct RoomFacts {
+  std::vector<double> region_clearance;  ///< 0 for a region without samples
+  std::vector<SkeletonSample> passage_sample;
+};
+
+inline RoomFacts room_facts(const RoomDetection& rooms) {
   const SampleGraph& g = rooms.graph;
+  RoomFacts facts;
+  facts.region_clearance.assign(static_cast<std::size_t>(rooms.region_count()), 0.0);
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
-    if (region < 0 || area_of_region[region] < 0) continue;
+    if (region >= 0) facts.region_clearance[region] = std::max(facts.region_clearance[region], g.samples[s].clearance);
+  }
+  for (const auto& p : rooms.passages) facts.passage_sample.push_back(g.samples[p.sample]);
+  return facts;
+}
+
+/// Step 10: each area's widest free disc (from its regions' skeleton samples) and its kind: a
+/// corridor when its hull diameter exceeds `corridor_elongation` times that disc's diameter.
+inline void measure_areas(const RoomFacts& facts, const std::vector<int>& area_of_region, double res,
+                          const AreaParams& params, AreaGraph& graph) {
+  for (std::size_t region = 0; region < facts.region_clearance.size(); ++region) {
+    if (area_of_region[region] < 0) continue;
     Area& area = graph.areas[area_of_region[region]];
-    area.max_clearance_m = std::max(area.max_clearance_m, g.samples[s].clearance * res);
+    area.max_clearance_m = std::max(area.max_clearance_m, facts.region_clearance[region] * res);
   }
   for (Area& area : graph.areas) {
     const double diameter = std::max(0.0, farthest_vertices(area.convex_hull).distance);
@@ -186,9 +204,8 @@ inline void measure_areas(const RoomDetection& rooms, const std::vector<int>& ar
 }
 
 /// Step 11: the passages between the areas their regions became (none inside one area).
-inline void add_passages(const RoomDetection& rooms, const std::vector<int>& area_of_region, double res,
+inline void add_passages(const RoomDetection& rooms, const RoomFacts& facts, const std::vector<int>& area_of_region, double res,
                          const LatticeFrame& to_world, AreaGraph& graph) {
-  const SampleGraph& g = rooms.graph;
   std::vector<std::pair<std::pair<int, int>, const DetectedPassage*>> kept;
   for (const auto& p : rooms.passages) {
     const int a = area_of_region[p.region_a], b = area_of_region[p.region_b];
@@ -196,7 +213,7 @@ inline void add_passages(const RoomDetection& rooms, const std::vector<int>& are
     kept.push_back({{std::min(a, b), std::max(a, b)}, &p});
   }
   for (const auto& [areas, detected] : kept) {
-    const SkeletonSample& s = g.samples[detected->sample];
+    const SkeletonSample& s = facts.passage_sample[static_cast<std::size_t>(detected - rooms.passages.data())];
     Passage passage;
     passage.id = static_cast<int>(graph.passages.size());
     passage.kind = detected->junction ? PassageKind::junction : PassageKind::door;

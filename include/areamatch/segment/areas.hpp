@@ -42,28 +42,29 @@ namespace areamatch {
 namespace detail {
 
 /// Steps 1–4 on working labels of type `Label` (a region id or `unlabelled`/`barrier` per cell
-/// of the free space's extent): passages sealed, regions grown over the core and then the fringe,
-/// barrier cells assigned, and the result as runs — the working labels are let go on return.
+/// of the free space's extent): passages sealed, regions grown from `seeds` over the core and then
+/// the fringe, barrier cells assigned, and the result as runs — the working labels and the seeds
+/// are let go on return.
 template <class Label>
-LabelRuns grow_labels(const FreeSpace& space, const RoomDetection& rooms, const AreaParams& params, double res) {
+LabelRuns grow_labels(const FreeSpace& space, const RoomDetection& rooms, std::vector<Seed> seeds, const AreaParams& params,
+                      double res) {
   // The core: free cells at least min_clearance from every wall, where the skeleton lives.
   std::vector<std::uint8_t> core = erode(space, params.min_clearance_m / res + 0.5);
   std::vector<Label> label(static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height),
                            static_cast<Label>(unlabelled));
   const std::vector<std::uint32_t> barrier_cells = seal_passages(space, rooms, label, core);
   const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
-  grow_regions(space, rooms, fringe_steps, label, core);
+  grow_regions(space, seeds, fringe_steps, label, core);
+  std::vector<Seed>().swap(seeds);
   std::vector<std::uint8_t>().swap(core);
   assign_barrier_cells(barrier_cells, space.width, label);
   return label_runs(space, label);
 }
 
-}  // namespace detail
-
-/// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
-/// the free-cell count for `covered_fraction`.
-inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
-                             const AreaParams& params = {}) {
+/// `build_areas` from what it reads of the rooms: their passages and region count (`rooms`;
+/// its sample graph is not read), the regions' seeds and the facts of steps 10–11.
+inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
+                                  std::vector<Seed> seeds, const RoomFacts& facts, const AreaParams& params) {
   params.validate();
   const std::size_t N = static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height);
   const double res = grid.resolution();
@@ -74,22 +75,42 @@ inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, 
     return graph;
   }
   if (N > std::numeric_limits<std::uint32_t>::max()) throw parameter_error("grid too large to segment");
-  const detail::LatticeFrame to_world{&grid, Eigen::Vector2d(space.offset_col, space.offset_row)};
+  const LatticeFrame to_world{&grid, Eigen::Vector2d(space.offset_col, space.offset_row)};
 
   // 16-bit working labels when the region ids fit: on a large floor they were the largest buffer.
-  detail::LabelRuns runs = rooms.region_count() < std::numeric_limits<std::int16_t>::max()
-                               ? detail::grow_labels<std::int16_t>(space, rooms, params, res)
-                               : detail::grow_labels<std::int32_t>(space, rooms, params, res);
-  const detail::Pieces pieces = detail::find_pieces(runs);
+  LabelRuns runs = rooms.region_count() < std::numeric_limits<std::int16_t>::max()
+                       ? grow_labels<std::int16_t>(space, rooms, std::move(seeds), params, res)
+                       : grow_labels<std::int32_t>(space, rooms, std::move(seeds), params, res);
+  const Pieces pieces = find_pieces(runs);
   const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
-  const detail::PieceAreas areas = detail::merge_small_pieces(runs, pieces, min_cells);
-  const std::vector<int> area_of_region = detail::area_of_regions(rooms.region_count(), pieces, areas.area_of_piece);
+  const PieceAreas areas = merge_small_pieces(runs, pieces, min_cells);
+  const std::vector<int> area_of_region = area_of_regions(rooms.region_count(), pieces, areas.area_of_piece);
 
-  detail::write_labels(grid, space, runs, graph);
-  detail::trace_areas(runs, space, res, to_world, areas.area_count, graph);
-  detail::measure_areas(rooms, area_of_region, res, params, graph);
-  detail::add_passages(rooms, area_of_region, res, to_world, graph);
+  write_labels(grid, space, runs, graph);
+  trace_areas(runs, space, res, to_world, areas.area_count, graph);
+  measure_areas(facts, area_of_region, res, params, graph);
+  add_passages(rooms, facts, area_of_region, res, to_world, graph);
   return graph;
+}
+
+/// `build_areas` that lets go of `rooms`' sample graph (and its samples' regions) before the
+/// labels are made: what `VoronoiSegmenter::segment` uses, which returns only the graph.
+inline AreaGraph build_areas_releasing(const OccupancyGrid& grid, const FreeSpace& space, RoomDetection& rooms,
+                                       const AreaParams& params) {
+  std::vector<Seed> seeds = region_seeds(space, rooms);
+  const RoomFacts facts = room_facts(rooms);
+  rooms.graph = SampleGraph{};
+  std::vector<int>().swap(rooms.region_of_sample);
+  return build_areas_from(grid, space, rooms, std::move(seeds), facts, params);
+}
+
+}  // namespace detail
+
+/// Builds the Area Graph from detected rooms (see the file comment). `grid` gives the frame and
+/// the free-cell count for `covered_fraction`.
+inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
+                             const AreaParams& params = {}) {
+  return detail::build_areas_from(grid, space, rooms, detail::region_seeds(space, rooms), detail::room_facts(rooms), params);
 }
 
 }  // namespace areamatch

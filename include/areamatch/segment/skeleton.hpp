@@ -23,6 +23,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <vector>
 
 namespace areamatch {
@@ -159,11 +160,39 @@ inline void edge_points(const Eigen::Vector2d& v0, const Eigen::Vector2d& v1, bo
 }
 
 /// A Voronoi edge kept for the skeleton: its end vertices (by index in the diagram, so the result
-/// does not depend on memory addresses) and its samples.
+/// does not depend on memory addresses; and their positions) and the two sites it separates.
+/// Its samples are not held: `edge_samples` makes them again, the same every time. Held, they
+/// were about nine samples of 56 bytes an edge, 51 MB beside the diagram on a 240 × 160 m floor.
 struct KeptEdge {
   std::size_t v0, v1;
-  std::vector<SkeletonSample> samples;
+  Eigen::Vector2d p0, p1;
+  VoronoiSite s0, s1;
+  bool curved = false;
 };
+
+/// The samples of a Voronoi edge from p0 to p1 at most `step` apart, with their clearance and
+/// feet on the two sites, into `samples` (cleared first; `points` is scratch). Stops after the
+/// first sample narrower than `min_clearance` and returns false then.
+inline bool edge_samples(const Eigen::Vector2d& p0, const Eigen::Vector2d& p1, bool curved, const VoronoiSite& s0,
+                         const VoronoiSite& s1, double step, double min_clearance, std::vector<Eigen::Vector2d>& points,
+                         std::vector<SkeletonSample>& samples) {
+  samples.clear();
+  edge_points(p0, p1, curved, s0, s1, step, points);
+  for (const Eigen::Vector2d& p : points) {
+    SkeletonSample sample;
+    sample.position = p;
+    sample.foot_a = s0.foot(p);
+    sample.foot_b = s1.foot(p);
+    sample.clearance = 0.5 * ((sample.foot_a - p).norm() + (sample.foot_b - p).norm());
+    if (sample.clearance < min_clearance) return false;
+    samples.push_back(sample);
+  }
+  return true;
+}
+
+inline void edge_samples(const KeptEdge& e, double step, std::vector<Eigen::Vector2d>& points, std::vector<SkeletonSample>& samples) {
+  edge_samples(e.p0, e.p1, e.curved, e.s0, e.s1, step, -std::numeric_limits<double>::infinity(), points, samples);
+}
 
 /// The diagram's finite primary edges that run through free space at least `min_clearance` (lattice
 /// units) from the walls all along, sampled every `step`; each undirected edge once. Counts the
@@ -175,6 +204,7 @@ inline std::vector<KeptEdge> kept_edges(const boost::polygon::voronoi_diagram<do
   };
   std::vector<KeptEdge> kept;
   std::vector<Eigen::Vector2d> points;
+  std::vector<SkeletonSample> samples;
   const auto* first_vertex = diagram.vertices().data();
   for (const auto& edge : diagram.edges()) {
     if (!edge.is_primary() || !edge.is_finite()) continue;
@@ -187,31 +217,18 @@ inline std::vector<KeptEdge> kept_edges(const boost::polygon::voronoi_diagram<do
     const VoronoiSite s1 = site_of(*edge.twin()->cell(), boundary.segments);
     const Eigen::Vector2d p0(a->x(), a->y()), p1(b->x(), b->y());
     if ((s0.foot(p0) - p0).norm() < min_clearance || (s0.foot(p1) - p1).norm() < min_clearance) continue;
-    KeptEdge k{static_cast<std::size_t>(a - first_vertex), static_cast<std::size_t>(b - first_vertex), {}};
-    bool passable = true;
-    edge_points(p0, p1, edge.is_curved(), s0, s1, step, points);
-    k.samples.reserve(points.size());
-    for (const Eigen::Vector2d& p : points) {
-      SkeletonSample sample;
-      sample.position = p;
-      sample.foot_a = s0.foot(p);
-      sample.foot_b = s1.foot(p);
-      sample.clearance = 0.5 * ((sample.foot_a - p).norm() + (sample.foot_b - p).norm());
-      if (sample.clearance < min_clearance) {
-        passable = false;
-        break;
-      }
-      k.samples.push_back(sample);
-    }
-    if (passable) kept.push_back(std::move(k));
+    if (!edge_samples(p0, p1, edge.is_curved(), s0, s1, step, min_clearance, points, samples)) continue;
+    kept.push_back({static_cast<std::size_t>(a - first_vertex), static_cast<std::size_t>(b - first_vertex), p0, p1, s0, s1,
+                    edge.is_curved()});
   }
+  kept.shrink_to_fit();
   return kept;
 }
 
 /// The graph over the kept edges into `skeleton`: nodes are vertices of degree ≠ 2 (plus one
-/// anchor per pure loop), branches the chains of edges between them. Each edge's samples are let
-/// go once its branch has them (a large floor's samples are hundreds of MB: not twice).
-inline void link_kept_edges(std::vector<KeptEdge>& kept, std::size_t vertex_count, Skeleton& skeleton) {
+/// anchor per pure loop), branches the chains of edges between them, with each edge's samples
+/// (`edge_samples`, sampled every `step`).
+inline void link_kept_edges(const std::vector<KeptEdge>& kept, std::size_t vertex_count, double step, Skeleton& skeleton) {
   // Per diagram vertex (by index, ascending): its kept edges in the order they were kept.
   const auto incident = build_adjacency<std::size_t>(vertex_count, kept.size(), [&](std::size_t i) {
     return LinkEnds<std::size_t>{kept[i].v0, i, kept[i].v1, i};
@@ -226,8 +243,11 @@ inline void link_kept_edges(std::vector<KeptEdge>& kept, std::size_t vertex_coun
     node_of_vertex[vertex] = id;
     return id;
   };
+  std::vector<Eigen::Vector2d> points;
+  std::vector<SkeletonSample> samples;
   auto sample_at = [&](std::size_t edge, std::size_t vertex) {
-    return kept[edge].v0 == vertex ? kept[edge].samples.front() : kept[edge].samples.back();
+    edge_samples(kept[edge], step, points, samples);
+    return kept[edge].v0 == vertex ? samples.front() : samples.back();
   };
   for (std::size_t vertex = 0; vertex < vertex_count; ++vertex)
     if (degree_of(vertex) != 0 && degree_of(vertex) != 2) make_node(vertex, sample_at(first_edge(vertex), vertex));
@@ -240,12 +260,11 @@ inline void link_kept_edges(std::vector<KeptEdge>& kept, std::size_t vertex_coun
     while (true) {
       used[e] = true;
       // The edge's samples in walking order; the first is shared with the previous edge.
-      const auto& samples = kept[e].samples;
+      edge_samples(kept[e], step, points, samples);
       const bool forward = kept[e].v0 == vertex;
       const std::size_t skip = branch.samples.empty() ? 0 : 1;
       if (forward) branch.samples.insert(branch.samples.end(), samples.begin() + static_cast<std::ptrdiff_t>(skip), samples.end());
       else branch.samples.insert(branch.samples.end(), samples.rbegin() + static_cast<std::ptrdiff_t>(skip), samples.rend());
-      std::vector<SkeletonSample>().swap(kept[e].samples);
       vertex = forward ? kept[e].v1 : kept[e].v0;
       if (node_of_vertex[vertex] >= 0) break;
       const std::size_t* next = incident.begin(vertex);  // degree 2: this edge and the next
@@ -318,7 +337,7 @@ inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& b
                               params.sample_step_m / resolution, skeleton);
     vertex_count = diagram.vertices().size();
   }
-  detail::link_kept_edges(kept, vertex_count, skeleton);
+  detail::link_kept_edges(kept, vertex_count, params.sample_step_m / resolution, skeleton);
   detail::prune_spurs(skeleton, params.spur_length_m / resolution, params.keep_clearance_m / resolution);
   return skeleton;
 }

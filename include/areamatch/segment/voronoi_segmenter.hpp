@@ -131,14 +131,17 @@ struct VoronoiSegmenter {
     out.rooms = detect_rooms(out.skeleton, res, params.rooms);
     if (!keep_skeleton) out.skeleton = Skeleton{};
     const auto t4 = clock::now();
-    out.graph = build_areas(grid, space, out.rooms, area_params);
+    const bool no_samples = out.rooms.graph.samples.empty();
+    // Without details, the rooms' sample graph is let go before the labels are made.
+    out.graph = keep_skeleton ? build_areas(grid, space, out.rooms, area_params)
+                              : detail::build_areas_releasing(grid, space, out.rooms, area_params);
     if (out.graph.areas.empty()) {
       if (grid.count().free == 0 && !params.binarize.unknown_is_free) {
         out.graph.reason = "the map has no free cells";
       } else if (space.count() == 0) {
         out.graph.reason = "its free cells form only specks smaller than " +
                            std::to_string(params.binarize.min_free_area_m2) + " m^2";
-      } else if (out.rooms.graph.samples.empty()) {
+      } else if (no_samples) {
         out.graph.reason = "no free space is wide enough to pass (it needs places at least " +
                            std::to_string(2.0 * params.skeleton.min_clearance_m) + " m across)";
       } else {
