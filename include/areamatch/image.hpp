@@ -18,10 +18,10 @@ namespace areamatch {
 inline constexpr int max_image_side = 20000;
 
 /// Largest accepted map in cells (e.g. 14 000 × 14 000; 500 000 m² at 0.05 m: a 400 × 300 m
-/// floor turned by 37° needs 96 M). Matching a pair peaks at about 10 bytes per cell of the two
-/// maps (measured: 925 MB for the 400 × 300 m generated pair's 97 M cells, docs/performance.md),
-/// so a pair at this size needs about 3–4 GB; the limit keeps a corrupt or absurd header from
-/// asking for more.
+/// floor turned by 37° needs 96 M). Matching a pair peaks at about 8 bytes per cell of the two
+/// maps (measured: 715–735 MB for the 400 × 300 m generated pair's 97 M cells,
+/// docs/performance.md), so a pair at this size needs about 3 GB; the limit keeps a corrupt or
+/// absurd header from asking for more.
 inline constexpr long long max_grid_cells = 200'000'000;
 
 /// Throws `format_error` naming `what` unless 1 ≤ width, height ≤ max_image_side, and
