@@ -10,12 +10,8 @@
 #include <Eigen/Core>
 
 #include <algorithm>
-#include <cstddef>
 #include <cstdint>
-#include <initializer_list>
-#include <iterator>
 #include <string>
-#include <type_traits>
 #include <vector>
 
 namespace areamatch {

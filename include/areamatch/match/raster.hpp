@@ -130,13 +130,15 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
 
   r.labels.assign(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height), -1);
   r.area_cells.resize(graph.areas.size());
+  // Raster cell k starts at map cell `origin + first_cell(k)` (row or column), and ends where k + 1 starts.
+  auto first_cell = [&](int k) { return static_cast<int>(std::ceil(k * factor - 0.5)); };
   // The map columns [first, end) of each raster column, and the raster column of each map column.
   const int span = bounds.col1 - bounds.col0;
   std::vector<int> col_first(static_cast<std::size_t>(r.width)), col_end(static_cast<std::size_t>(r.width));
   std::vector<int> col_of(static_cast<std::size_t>(std::max(span, 0)), -1);
   for (int col = 0; col < r.width; ++col) {
-    col_first[col] = std::max(bounds.col0, bounds.col0 + static_cast<int>(std::ceil(col * factor - 0.5)));
-    col_end[col] = std::min(bounds.col1, bounds.col0 + static_cast<int>(std::ceil((col + 1) * factor - 0.5)));
+    col_first[col] = std::max(bounds.col0, bounds.col0 + first_cell(col));
+    col_end[col] = std::min(bounds.col1, bounds.col0 + first_cell(col + 1));
     for (int x = col_first[col]; x < col_end[col]; ++x) col_of[static_cast<std::size_t>(x - bounds.col0)] = col;
   }
   // Per raster column of the current raster row: (area id, map cells) and the labelled cells.
@@ -154,8 +156,8 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
     else it->second += count;
   };
   for (int row = 0; row < r.height; ++row) {
-    const int row0 = std::max(bounds.row0, bounds.row0 + static_cast<int>(std::ceil(row * factor - 0.5)));
-    const int row1 = std::min(bounds.row1, bounds.row0 + static_cast<int>(std::ceil((row + 1) * factor - 0.5)));
+    const int row0 = std::max(bounds.row0, bounds.row0 + first_cell(row));
+    const int row1 = std::min(bounds.row1, bounds.row0 + first_cell(row + 1));
     for (auto& list : votes) list.clear();
     std::fill(labelled.begin(), labelled.end(), 0);
     // The map rows a run at a time (the labels are held as runs), split at the raster columns.
