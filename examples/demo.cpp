@@ -69,10 +69,10 @@ int main(int argc, char** argv) {
                 robot_graph.areas.size(), robot_graph.passages.size(), layout_graph.areas.size(),
                 layout_graph.passages.size());
     std::printf("save/load round trip: %s\n", round_trip ? "identical" : "DIFFERENT");
-    std::printf("match: %s, rotation %.2f deg, translation (%.3f, %.3f) m%s, score %.3f, confidence %.3f, %zu matched areas, "
+    std::printf("match: %s, rotation %.2f deg, translation (%.3f, %.3f) m%s, score %.3f, margin %.3f, %zu matched areas, "
                 "%.1f ms\n", result.ok ? "ok" : result.reason.c_str(), result.T_dest_source.rotation * 180.0 / areamatch::pi,
                 result.T_dest_source.translation.x(), result.T_dest_source.translation.y(),
-                result.T_dest_source.reflected ? ", mirrored" : "", result.score, result.confidence,
+                result.T_dest_source.reflected ? ", mirrored" : "", result.score, result.margin,
                 result.matched_areas.size(), 1000.0 * result.timings.match_s);
     std::printf("error against the ground truth: rotation %.3f deg, mean wall displacement %.3f m -> %s\n",
                 error.rotation_error_deg, error.mean_displacement_m, correct ? "CORRECT" : "WRONG");

@@ -200,7 +200,7 @@ TEST_CASE("match: a generated pair, JSON on stdout, pictures, exit codes") {
   CHECK(out.rfind("{\"ok\": true", 0) == 0);
   CHECK(out.find('\n') == out.size() - 1);
   for (const char* key : {"\"rotation_deg\"", "\"translation_m\"", "\"scale\"", "\"reflected\": true", "\"pixel_transform\"",
-                          "\"score\"", "\"confidence\"", "\"matched_areas\"", "\"segment_source_s\"", "\"segment_dest_s\"",
+                          "\"score\"", "\"margin\"", "\"matched_areas\"", "\"segment_source_s\"", "\"segment_dest_s\"",
                           "\"match_s\"", "\"total_s\""}) {
     CHECK_MESSAGE(out.find(key) != std::string::npos, key);
   }
@@ -292,6 +292,56 @@ TEST_CASE("the progress line: on a terminal or when asked, on stderr only, clear
   // Piped (as here) or told never: no line.
   CHECK(stream(match, true).find('\r') == std::string::npos);
   CHECK(stream("AREAMATCH_PROGRESS=never" + match, true).find('\r') == std::string::npos);
+}
+
+TEST_CASE("parameters and --set: one table of settings; a setting reaches the match; bad ones exit 2") {
+  const Run table = run("parameters", false);
+  REQUIRE(table.status == 0);
+  CHECK(table.out.find("segmenter (VoronoiSegmenter::Params):\n  binarize.unknown_is_free = false") == 0);
+  CHECK(table.out.find("  decision.min_agreement = " + areamatch::detail::format_double(areamatch::MatcherParams{}.decision.min_agreement)) !=
+        std::string::npos);
+  CHECK(table.out.find("  coarse_cell_m* = 0.25") != std::string::npos);  // shapes a prepared map
+  CHECK(run("parameters --paper", false).out.find("  k = 3 ") != std::string::npos);
+  CHECK(run("parameters --set k=7 --set refinement.gates_m=2,1", false).out.find("  refinement.gates_m* = 2,1 ") != std::string::npos);
+  const Run json = run("parameters --json", false);
+  CHECK(json.status == 0);
+  CHECK(json.out.find("{\"name\": \"k\", \"value\": \"10\", \"meaning\": ") != std::string::npos);
+  CHECK(run("parameters --markdown", false).out.find("| `k` | 10 | ") != std::string::npos);
+
+  const std::string dir = areamatch_test::temp_dir() + "/set_option";
+  REQUIRE(run("generate " + dir + " --seed 6 --width 16 --height 12").status == 0);
+  const std::string pair = dir + "/robot.yaml " + dir + "/layout.yaml";
+  const Run plain = run("match " + pair + " --json --threads 1", false);
+  const Run same = run("match " + pair + " --json --threads 1 --set k=10 --set allow_reflection=false", false);
+  const Run named = run("match " + pair + " --json --threads 1 --k 4 --min-agreement 0.5", false);
+  const Run set = run("match " + pair + " --json --threads 1 --set k=4 --set decision.min_agreement=0.5", false);
+  auto without_times = [](std::string text) {
+    std::string out;
+    std::istringstream lines(text);
+    for (std::string item; std::getline(lines, item, ',');) {
+      if (item.find("_s\"") == std::string::npos) out += item + ",";
+    }
+    return out;
+  };
+  CHECK(without_times(plain.out) == without_times(same.out));
+  CHECK(without_times(named.out) == without_times(set.out));  // --k and --set k are one setting
+  const Run door = run("segment " + dir + "/layout.yaml --set rooms.door_width_m=0.6", false);
+  const Run door_named = run("segment " + dir + "/layout.yaml --door-width 0.6", false);
+  CHECK(door.status == 0);
+  CHECK(door.out.substr(0, door.out.find("covered")) == door_named.out.substr(0, door_named.out.find("covered")));
+
+  for (const auto& [bad, says] : {std::pair<std::string, std::string>{"--set k", "--set takes NAME=VALUE, got 'k'"},
+                                  {"--set decision.min_agrement=0.9", "did you mean decision.min_agreement?"},
+                                  {"--set k=ten", "parameter k must be a number, got 'ten'"},
+                                  {"--set coarse_cell_m=0", "coarse_cell_m"}}) {
+    const Run r = run("match " + pair + " " + bad);
+    CHECK_MESSAGE(r.status == 2, bad);
+    CHECK_MESSAGE(r.out.find(says) != std::string::npos, r.out);
+  }
+  const Run segment_matching = run("segment " + dir + "/layout.yaml --set k=3");
+  CHECK(segment_matching.status == 2);
+  CHECK(segment_matching.out.find("a matching setting") != std::string::npos);
+  CHECK(run("parameters --json --markdown").status == 2);
 }
 
 TEST_CASE("match: bad input and usage exit 2 with a message, no acceptable match exits 1") {

@@ -208,7 +208,7 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   const MatcherParams params;
   MatchResult r;
   r.score = 0.6;
-  r.confidence = 0.05;
+  r.margin = 0.05;
   r.evidence.agreement = 0.85;
   r.evidence.reverse_wall_agreement = 0.9;
   r.evidence.forward_wall_agreement = 0.45;  // lab_b-like: the SLAM map's clutter unexplained
@@ -248,7 +248,7 @@ TEST_CASE("the agreement gate needs enough shared free space: walls that agree o
   const MatcherParams params;
   MatchResult r;
   r.score = 0.5;
-  r.confidence = 0.05;
+  r.margin = 0.05;
   r.evidence.agreement = 0.874;
   r.evidence.reverse_wall_agreement = 0.97;
   r.evidence.forward_wall_agreement = 0.31;

@@ -944,7 +944,8 @@ TEST_CASE("prepared maps: the same results as matching the grids, bit for bit; a
 
   Matcher<> other = matcher;
   other.params.coarse_cell_m *= 2.0;
-  CHECK_THROWS_WITH_AS(other.match(source, dest), doctest::Contains("prepared by a matcher with other"), parameter_error);
+  CHECK_THROWS_WITH_AS(other.match(source, dest), doctest::Contains("prepared by a matcher with another coarse_cell_m"),
+                       parameter_error);
   other = matcher;
   other.params.decision.min_agreement = 0.5;  // the decision is not part of a prepared map
   CHECK_NOTHROW(other.match(source, dest));
@@ -1105,7 +1106,7 @@ TEST_CASE("a refusal says 'different places' only when the evidence is against, 
   const MatcherParams params;
   MatchResult result;
   result.score = 0.6;
-  result.confidence = 0.2;
+  result.margin = 0.2;
   result.evidence.agreement = 0.7;  // below min_agreement
   result.evidence.forward_wall_agreement = 0.5;
   result.evidence.reverse_wall_agreement = 0.8;
@@ -1139,14 +1140,14 @@ TEST_CASE("a refusal says 'different places' only when the evidence is against, 
   CHECK(r.reason.find("not sure: the maps agree") == 0);
   // A close rival: not sure, even with a model that would accept.
   MatcherParams strict = params;
-  strict.decision.min_confidence = 0.05;
+  strict.decision.min_margin = 0.05;
   result.p_correct = 0.99;
-  result.confidence = 0.01;
+  result.margin = 0.01;
   r = detail::refusal(result, strict.decision, true);
   CHECK(r.kind == Rejection::not_sure);
   CHECK(r.reason.find("not sure: ambiguous") == 0);
   // Accepted: no refusal.
-  result.confidence = 0.2;
+  result.margin = 0.2;
   r = detail::refusal(result, strict.decision, true);
   CHECK(r.reason.empty());
   CHECK(r.kind == Rejection::none);

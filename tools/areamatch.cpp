@@ -522,15 +522,38 @@ const char* kSegmentHelp =
     "  --graph OUT.json   write the graph: areas (polygons in metres, world frame), passages, map frame\n"
     "  --json             print the graph as exactly one JSON object on stdout (no summary line)\n";
 
+/// The `--set NAME=VALUE` options, in order (names and values are checked where they are applied).
+std::vector<areamatch::ParameterSetting> settings_from(const Args& args) {
+  std::vector<areamatch::ParameterSetting> settings;
+  for (const std::string& given : args.all("set")) {
+    const auto eq = given.find('=');
+    if (eq == std::string::npos || eq == 0) throw UsageError("--set takes NAME=VALUE, got '" + given + "'");
+    settings.push_back({given.substr(0, eq), given.substr(eq + 1)});
+  }
+  return settings;
+}
+
+const char* kSetHelp =
+    "  --set NAME=VALUE        any setting by name, e.g. --set refinement.gates_m=2,1,0.5 (repeatable;\n"
+    "                          applied after the other options, the door widths last): see areamatch parameters\n";
+
 areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& door_option = "door-width") {
   areamatch::VoronoiSegmenter segmenter;
-  if (const auto door = door_width(args, door_option)) segmenter.params.with_door_width(*door);
   if (const auto area = args.number("min-area", false, true)) segmenter.params.areas.min_area_m2 = *area;
   if (const auto margin = args.number("room-margin", false, true)) segmenter.params.rooms.room_margin_m = *margin;
   if (const auto tolerance = args.number("simplify", false, true)) segmenter.params.boundary.simplify_tolerance_m = *tolerance;
   if (const auto speckle = args.number("speckle-area", false, true)) segmenter.params.binarize.max_speckle_area_m2 = *speckle;
   if (const auto size = args.number("speckle-size", false, true)) segmenter.params.binarize.max_speckle_size_m = *size;
   if (const auto width = args.number("min-traced-width", false, true)) segmenter.params.boundary.min_traced_width_m = *width;
+  const auto settings = settings_from(args);
+  for (const auto& setting : settings) {
+    if (!areamatch::parameter_is_segmenters(setting.name) && areamatch::parameter_is_known(setting.name)) {
+      throw UsageError("--set " + setting.name + ": a matching setting; this command takes the segmenter's (areamatch parameters)");
+    }
+  }
+  areamatch::MatcherParams unused;  // receives nothing: each setting was checked above
+  areamatch::set_parameters(segmenter.params, unused, settings);
+  if (const auto door = door_width(args, door_option)) segmenter.params.with_door_width(*door);
   return segmenter;
 }
 
@@ -546,9 +569,9 @@ areamatch::GreyImage label_image(const areamatch::AreaGraph& graph) {
 int run_segment(const std::vector<std::string>& tokens) {
   const Args args(tokens, merged(kMapFlags, {"show-skeleton", "json"}),
                   merged(kMapOptions, {"door-width", "min-area", "room-margin", "simplify", "speckle-area", "speckle-size",
-                                       "min-traced-width", "png", "svg", "labels", "graph"}));
+                                       "min-traced-width", "png", "svg", "labels", "graph", "set"}));
   if (args.flag("help")) {
-    std::cout << kSegmentHelp << kMapOptionsHelp;
+    std::cout << kSegmentHelp << kSetHelp << kMapOptionsHelp;
     return 0;
   }
   make_output_folders(args, {"png", "svg", "labels", "graph"});
@@ -588,6 +611,56 @@ int run_segment(const std::vector<std::string>& tokens) {
   if (graph.areas.empty()) {
     std::cerr << "areamatch segment: " << args.positional()[0] << ": no areas: " << graph.reason << "\n";
     return 1;
+  }
+  return 0;
+}
+
+// ---------------------------------------------------------------------------------- parameters
+
+const char* kParametersHelp =
+    "Usage: areamatch parameters [--paper] [--json | --markdown] [--set NAME=VALUE ...]\n"
+    "Every setting that --set takes (segmenter, then matcher), with its value and what it does.\n"
+    "Lengths in metres, areas in m^2, angles in radians; lists as 2,1.2,0.7.\n"
+    "  --paper       the values of the paper's matcher (--paper of match and eval)\n"
+    "  --set N=V     show the values after these settings (and check them)\n"
+    "  --json        one JSON array: name, value, meaning, of (segmenter/matcher), shapes_map_data\n"
+    "  --markdown    the table of docs/parameters.md\n"
+    "A setting marked * shapes what a prepared map holds: maps prepared under another value are refused.\n";
+
+int run_parameters(const std::vector<std::string>& tokens) {
+  const Args args(tokens, {"paper", "json", "markdown", "help"}, {"set"});
+  if (args.flag("help")) {
+    std::cout << kParametersHelp;
+    return 0;
+  }
+  args.expect_positional(0, "");
+  if (args.flag("json") && args.flag("markdown")) throw UsageError("give --json or --markdown, not both");
+  areamatch::VoronoiSegmenterParams segmenter;
+  areamatch::MatcherParams matcher = args.flag("paper") ? areamatch::MatcherParams::paper() : areamatch::MatcherParams{};
+  areamatch::set_parameters(segmenter, matcher, settings_from(args));
+  const auto rows = areamatch::parameter_rows(segmenter, matcher);
+  if (args.flag("json")) {
+    std::string out = "[";
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      const auto& r = rows[i];
+      out += std::string(i ? ",\n " : "") + "{\"name\": " + areamatch::detail::json_quote(r.name) + ", \"value\": " +
+             areamatch::detail::json_quote(r.value) + ", \"meaning\": " + areamatch::detail::json_quote(r.meaning) + ", \"of\": \"" +
+             (r.segmenter ? "segmenter" : "matcher") + "\", \"shapes_map_data\": " + (r.shapes_map_data ? "true" : "false") + "}";
+    }
+    std::cout << out << "]\n";
+  } else if (args.flag("markdown")) {
+    std::cout << areamatch::parameters_markdown(segmenter, matcher);
+  } else {
+    std::size_t width = 0;
+    for (const auto& r : rows) width = std::max(width, std::min<std::size_t>(r.name.size() + r.value.size() + 5, 56));
+    bool in_matcher = false;
+    std::cout << "segmenter (VoronoiSegmenter::Params):\n";
+    for (const auto& r : rows) {
+      if (!r.segmenter && !in_matcher) std::cout << "matcher (MatcherParams" << (args.flag("paper") ? "::paper()" : "") << "):\n";
+      in_matcher = in_matcher || !r.segmenter;
+      std::string line = "  " + r.name + (r.shapes_map_data ? "*" : "") + " = " + r.value;
+      std::cout << line << std::string(width > line.size() ? width - line.size() : 1, ' ') << r.meaning << "\n";
+    }
   }
   return 0;
 }
@@ -641,12 +714,13 @@ const std::string kPairOptionsHelp = with_decision_defaults(
     "  --gate-min-overlap M2   ... and the maps share at least M2 square metres of free space (default {gate_min_overlap_m2};\n"
     "                          0: whatever the overlap)\n"
     "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
-    "                          per core); the same result for any N\n");
+    "                          per core); the same result for any N\n" +
+    std::string(kSetHelp));
 
 const std::set<std::string> kPairFlags = {"allow-reflection", "paper", "estimate-scale", "help"};
 const std::set<std::string> kPairOptions = {"source-resolution", "dest-resolution", "door-width", "source-door-width",
                                             "dest-door-width", "k", "min-score", "min-agreement", "gate-max-lower-walls", "gate-min-overlap",
-                                            "min-p-correct", "threads"};
+                                            "min-p-correct", "threads", "set"};
 
 /// What the pair options of `args` ask of loading, segmenting and matching.
 areamatch::MapPairOptions map_pair_options(const Args& args) {
@@ -670,6 +744,7 @@ areamatch::MapPairOptions map_pair_options(const Args& args) {
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
   options.threads = static_cast<unsigned>(args.integer("threads", 0, 256).value_or(areamatch::default_program_threads));
+  options.settings = settings_from(args);
   return options;
 }
 
@@ -722,7 +797,7 @@ const std::string kMatchHelp =
     "What the output's numbers mean:\n"
     "  agreement   how well the two maps agree under the answer, 0-1: the walls each way and the shared free space\n"
     "  p_correct   the calibrated probability that the answer is right (a model fitted on real and generated pairs)\n"
-    "  confidence  the score's margin over the best answer that differs (another turn or place); small: ambiguous\n"
+    "  margin      the score's margin over the best answer that differs (another turn or place); small: ambiguous\n"
     "An answer is accepted when p_correct >= " + format_double(areamatch::DecisionParams{}.accept_p_correct) +
     ", or when the agreement passes --min-agreement where the model\n"
     "underrates cluttered maps; the output says which. A rejection says 'different places' when the evidence is\n"
@@ -782,7 +857,7 @@ int run_match(const std::vector<std::string>& tokens) {
               << " deg, translation (" << format_fixed(T.translation.x(), 3) << ", " << format_fixed(T.translation.y(), 3)
               << ") m" << (result.scale_estimated ? ", scale " + format_fixed(T.scale, 4) : std::string())
               << (T.reflected ? ", reflected" : "") << ", score " << format_fixed(result.score, 3)
-              << ", p_correct " << format_fixed(result.p_correct, 3) << ", confidence " << format_fixed(result.confidence, 3)
+              << ", p_correct " << format_fixed(result.p_correct, 3) << ", margin " << format_fixed(result.margin, 3)
               << (result.ambiguous ? " (ambiguous: another transform scores almost as well)" : "") << ", "
               << result.matched_areas.size()
               << " matched areas (" << result.statistics.source_areas << " / " << result.statistics.dest_areas
@@ -1146,9 +1221,9 @@ void print_merge_summary(const areamatch::MergeResult& result, const std::vector
 int run_merge(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"json", "allow-reflection", "until-connected", "no-same-side", "non-rigid", "help"},
                   {"reference", "out", "png", "door-width", "merged-resolution", "resolution", "wall-share", "max-residual", "min-agreement",
-                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads", "control-spacing", "bend-length"});
+                   "gate-max-lower-walls", "gate-min-overlap", "min-p-correct", "threads", "control-spacing", "bend-length", "set"});
   if (args.flag("help")) {
-    std::cout << kMergeHelp;
+    std::cout << kMergeHelp << kSetHelp;
     return 0;
   }
   // `--resolution` is an input map's cell size in info and segment; merge's output cell size
@@ -1178,9 +1253,9 @@ int run_merge(const std::vector<std::string>& tokens) {
   match_options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
   match_options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
   match_options.min_p_correct = args.fraction("min-p-correct");
-  areamatch::Matcher<> matcher;
+  match_options.settings = settings_from(args);
+  areamatch::Matcher<> matcher = areamatch::detail::configured_matcher(areamatch::Matcher<>{}, match_options);
   matcher.segmenter = areamatch::detail::segmenter_with_door(matcher.segmenter, door_width(args, "door-width"));
-  areamatch::detail::apply_match_options(matcher.params, match_options);
 
   for (const auto& path : paths) note_assumed_defaults(path, {}, "");
   using clock = std::chrono::steady_clock;
@@ -1286,9 +1361,9 @@ std::string picture_name(std::size_t index, const std::string& pair_name) {
 int run_eval(const std::vector<std::string>& tokens) {
   const Args args(tokens, {"no-reflection", "paper", "cross-buildings", "estimate-scale", "help"},
                   {"out", "repeat", "only", "k", "min-score", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "min-p-correct",
-                   "picture-scale", "source-resolution"});
+                   "picture-scale", "source-resolution", "set"});
   if (args.flag("help")) {
-    std::cout << kEvalHelp;
+    std::cout << kEvalHelp << kSetHelp;
     return 0;
   }
   args.expect_positional(1, "MANIFEST");
@@ -1303,6 +1378,7 @@ int run_eval(const std::vector<std::string>& tokens) {
   options.matching.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
   options.matching.min_p_correct = args.fraction("min-p-correct");
   options.matching.estimate_scale = args.flag("estimate-scale");
+  options.matching.settings = settings_from(args);
   options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);
   const auto picture_scale = args.integer("picture-scale", 1, 100);
   const auto out = args.text("out");
@@ -1597,6 +1673,7 @@ const char* kMainHelp =
     "  generate OUTDIR   write a synthetic layout + robot map pair with ground truth\n"
     "  simulate PLAN OUTDIR  simulated laser-SLAM maps of a floor plan, with ground truth\n"
     "  calibrate CSV...  fit the accept/reject decision on eval results, cross-validated by building\n"
+    "  parameters        every setting --set takes, with its value and what it does\n"
     "  version           print the version\n"
     "Exit status: 0 success, 1 no acceptable result, 2 bad input or usage, 3 internal error (a bug:\n"
     "please report it with the command and the maps) or out of memory.\n"
@@ -1612,7 +1689,7 @@ int main(int argc, char** argv) {
     return all.empty() ? 2 : 0;
   }
   const std::map<std::string, std::function<int(const std::vector<std::string>&)>> commands = {
-      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"warp", run_warp}, {"assess", run_assess}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}};
+      {"info", run_info}, {"generate", run_generate}, {"simulate", run_simulate}, {"segment", run_segment}, {"match", run_match}, {"warp", run_warp}, {"assess", run_assess}, {"merge", run_merge}, {"eval", run_eval}, {"calibrate", run_calibrate}, {"parameters", run_parameters}};
   const std::string command = all[0];
   const std::vector<std::string> rest(all.begin() + 1, all.end());
   try {

@@ -3,6 +3,7 @@
 // --options with values, numbers checked with messages that name the option. Usage errors are
 // `UsageError`; the program turns them into exit status 2.
 
+#include <areamatch/detail/nearest_name.hpp>
 #include <areamatch/error.hpp>
 
 #include <algorithm>
@@ -22,33 +23,11 @@ struct UsageError : std::runtime_error {
   using std::runtime_error::runtime_error;
 };
 
-/// Edit distance (insertions, deletions, substitutions) between two option names.
-inline std::size_t edit_distance(const std::string& a, const std::string& b) {
-  std::vector<std::size_t> row(b.size() + 1);
-  for (std::size_t j = 0; j <= b.size(); ++j) row[j] = j;
-  for (std::size_t i = 1; i <= a.size(); ++i) {
-    std::size_t diagonal = row[0];
-    row[0] = i;
-    for (std::size_t j = 1; j <= b.size(); ++j) {
-      const std::size_t above = row[j];
-      row[j] = std::min({row[j] + 1, row[j - 1] + 1, diagonal + (a[i - 1] == b[j - 1] ? 0 : 1)});
-      diagonal = above;
-    }
-  }
-  return row[b.size()];
-}
-
-/// " (did you mean --NAME?)" for the known name nearest to `name`, when it is a typo away (at most
-/// a quarter of its letters, and at least one, differ); else "".
+/// " (did you mean --NAME?)" for the known name nearest to `name`, when it is a typo away; else "".
 inline std::string did_you_mean(const std::string& name, const std::set<std::string>& flags, const std::set<std::string>& options) {
-  std::string best;
-  std::size_t best_distance = std::max<std::size_t>(1, name.size() / 4) + 1;
-  for (const auto* names : {&flags, &options}) {
-    for (const std::string& known : *names) {
-      const std::size_t d = edit_distance(name, known);
-      if (d < best_distance) best = known, best_distance = d;
-    }
-  }
+  std::vector<std::string> known(flags.begin(), flags.end());
+  known.insert(known.end(), options.begin(), options.end());
+  const std::string best = areamatch::detail::nearest_name(name, known);
   return best.empty() ? std::string() : " (did you mean --" + best + "?)";
 }
 
@@ -75,7 +54,7 @@ class Args {
             if (i + 1 >= tokens.size()) throw UsageError("--" + name + " needs a value");
             value = tokens[++i];
           }
-          values_[name] = value;
+          values_[name].push_back(value);
         } else {
           throw UsageError("unknown option --" + name + did_you_mean(name, flags, options));
         }
@@ -90,10 +69,17 @@ class Args {
   bool flag(const std::string& name) const { return flags_.count(name) != 0; }
   const std::vector<std::string>& positional() const { return positional_; }
 
+  /// The option's value; given more than once, the last.
   std::optional<std::string> text(const std::string& name) const {
     auto it = values_.find(name);
     if (it == values_.end()) return std::nullopt;
-    return it->second;
+    return it->second.back();
+  }
+
+  /// Every value of an option that may be repeated (`--set A=1 --set B=2`), in order.
+  std::vector<std::string> all(const std::string& name) const {
+    auto it = values_.find(name);
+    return it == values_.end() ? std::vector<std::string>{} : it->second;
   }
 
   /// A finite number, optionally required to be > 0 (`positive`) or ≥ 0.
@@ -137,7 +123,7 @@ class Args {
 
  private:
   std::set<std::string> flags_;
-  std::map<std::string, std::string> values_;
+  std::map<std::string, std::vector<std::string>> values_;
   std::vector<std::string> positional_;
 };
 

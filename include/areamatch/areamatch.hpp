@@ -11,6 +11,7 @@
 #include "image.hpp"
 #include "matcher.hpp"
 #include "merge.hpp"
+#include "parameters.hpp"
 #include "render.hpp"
 #include "segment/voronoi_segmenter.hpp"
 #include "segmenter.hpp"

@@ -65,6 +65,7 @@
 #include "match/scale_search.hpp"
 #include "match/schedule.hpp"
 #include "match/selection.hpp"
+#include "parameters.hpp"
 #include "progress.hpp"
 #include "segment/voronoi_segmenter.hpp"
 #include "segmenter.hpp"
@@ -162,7 +163,7 @@ class Matcher {
     OccupancyGrid grid_;
     AreaGraph graph_;
     MapData data_;
-    detail::MapDataKey key_;
+    MatcherParams params_;  ///< those it was prepared with (`map_data_setting_differing`)
   };
 
   /// A prepared map's free-space edge points with their free sides and a lookup with normals and
@@ -322,7 +323,7 @@ class Matcher {
     PreparedMap m;
     m.grid_ = grid;
     m.graph_ = std::move(graph);
-    m.key_ = detail::map_data_key(params, true);
+    m.params_ = params;
     if (!m.graph_.areas.empty()) m.data_ = detail::build_map_data(m.grid_, m.graph_, features, params, true, params.threads, from_grid);
     return m;
   }
@@ -334,9 +335,10 @@ class Matcher {
 
   void check_prepared(const PreparedMap& m, const char* which) const {
     params.validate();
-    if (!(m.key_ == detail::map_data_key(params, true))) {
-      throw parameter_error(std::string("Matcher::match: the ") + which + " map was prepared by a matcher with other "
-                            "cell sizes, edge spacing, lookups or wall directions; prepare it with this matcher");
+    const std::string differing = map_data_setting_differing(m.params_, params);
+    if (!differing.empty()) {
+      throw parameter_error(std::string("Matcher::match: the ") + which + " map was prepared by a matcher with another " +
+                            differing + ", which shapes a prepared map's data; prepare it with this matcher");
     }
   }
 

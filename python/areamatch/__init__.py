@@ -31,6 +31,7 @@ from ._core import (  # noqa: F401
     assess,
     load_map,
     match,
+    parameters,
     segment,
 )
 from . import ros, synthetic  # noqa: F401

@@ -6,7 +6,7 @@ from .errors import (Error as Error, FormatError as FormatError, InternalError a
 from ._core import (DEFAULT_THREADS as DEFAULT_THREADS, FREE as FREE, OCCUPIED as OCCUPIED, UNKNOWN as UNKNOWN, Area as Area, AreaGraph as AreaGraph,
                     Assessment as Assessment, Map as Map, Matcher as Matcher, MergeResult as MergeResult, Passage as Passage, Picture as Picture,
                     PreparedMap as PreparedMap, Result as Result, __version__ as __version__, assess as assess, load_map as load_map,
-                    match as match, segment as segment)
+                    match as match, parameters as parameters, segment as segment)
 
 class MatchedArea(Dict[str, Any]):
     source: int

@@ -92,7 +92,7 @@ class Result:
     scale_estimated: bool
     reflected: bool
     score: float
-    confidence: float
+    margin: float
     ambiguous: bool
     p_correct: float
     source_map: Map
@@ -116,7 +116,10 @@ def match(source: Map, dest: Map, *, allow_reflection: bool = ..., estimate_scal
           dest_door_width_m: Optional[float] = ..., k: Optional[int] = ..., min_score: Optional[float] = ...,
           min_agreement: Optional[float] = ..., gate_max_lower_walls: Optional[float] = ...,
           gate_min_overlap_m2: Optional[float] = ..., min_p_correct: Optional[float] = ..., paper: bool = ...,
-          threads: int = ..., progress: Optional[Callable[[str, int, int], None]] = ...) -> Result: ...
+          threads: int = ..., progress: Optional[Callable[[str, int, int], None]] = ...,
+          params: Optional[Dict[str, Any]] = ...) -> Result: ...
+
+def parameters(*, paper: bool = ...) -> List[Dict[str, Any]]: ...
 
 class Assessment:
     ok: bool
@@ -154,8 +157,9 @@ class MergeResult:
 class Matcher:
     def __init__(self, *, door_width_m: Optional[float] = ..., allow_reflection: bool = ..., k: Optional[int] = ...,
                  min_score: Optional[float] = ..., min_agreement: Optional[float] = ...,
-                 gate_max_lower_walls: Optional[float] = ..., min_p_correct: Optional[float] = ...,
-                 threads: int = ...) -> None: ...
+                 gate_max_lower_walls: Optional[float] = ..., gate_min_overlap_m2: Optional[float] = ...,
+                 min_p_correct: Optional[float] = ..., threads: int = ...,
+                 params: Optional[Dict[str, Any]] = ...) -> None: ...
     def prepare(self, map: Map) -> PreparedMap: ...
     def prepare_all(self, maps: Sequence[Map], threads: int = ...) -> List[PreparedMap]: ...
     @overload

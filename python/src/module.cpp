@@ -229,6 +229,36 @@ am::ProgressCallback python_progress(const py::object& callable) {
   };
 }
 
+/// `params={"name": value}` as settings of the table (parameters.hpp): bools as true/false, numbers
+/// exactly, lists of numbers comma-joined, text as it is. Called with the GIL released (the
+/// bindings' call guard): takes it for the conversion.
+std::vector<am::ParameterSetting> settings_from(const py::object& params) {
+  const py::gil_scoped_acquire gil;
+  std::vector<am::ParameterSetting> settings;
+  if (params.is_none()) return settings;
+  if (!py::isinstance<py::dict>(params)) throw am::parameter_error("params must be a dict of setting names to values");
+  auto text = [](const py::handle& v, const std::string& name) -> std::string {
+    if (py::isinstance<py::bool_>(v)) return v.cast<bool>() ? "true" : "false";
+    if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
+    if (py::isinstance<py::float_>(v)) return am::detail::format_double(v.cast<double>());
+    if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+    throw am::parameter_error("params['" + name + "']: a bool, a number, a list of numbers or text, got " +
+                              py::str(py::type::of(v)).cast<std::string>());
+  };
+  for (const auto& [key, value] : params.cast<py::dict>()) {
+    if (!py::isinstance<py::str>(key)) throw am::parameter_error("params: each key is a setting's name (a str)");
+    const std::string name = key.cast<std::string>();
+    std::string joined;
+    if (py::isinstance<py::list>(value) || py::isinstance<py::tuple>(value)) {
+      for (const auto& item : value) joined += (joined.empty() ? "" : ",") + text(item, name);
+    } else {
+      joined = text(value, name);
+    }
+    settings.push_back({name, joined});
+  }
+  return settings;
+}
+
 /// A default matcher with options, for prepared maps and merging.
 struct PyMatcher {
   DefaultMatcher matcher;
@@ -558,7 +588,7 @@ void bind_match(py::module_& m) {
       .def_property_readonly("scale_estimated", [](const MatchRun& r) { return r.run.result.scale_estimated; })
       .def_property_readonly("reflected", [](const MatchRun& r) { return r.run.result.T_dest_source.reflected; })
       .def_property_readonly("score", [](const MatchRun& r) { return r.run.result.score; })
-      .def_property_readonly("confidence", [](const MatchRun& r) { return r.run.result.confidence; })
+      .def_property_readonly("margin", [](const MatchRun& r) { return r.run.result.margin; })
       .def_property_readonly("ambiguous", [](const MatchRun& r) { return r.run.result.ambiguous; })
       .def_property_readonly("p_correct", [](const MatchRun& r) { return r.run.result.p_correct; },
                              "calibrated probability that the transform is right (docs/evaluation.md)")
@@ -620,10 +650,12 @@ void bind_match(py::module_& m) {
          std::optional<double> door_width, std::optional<double> source_door_width, std::optional<double> dest_door_width,
          std::optional<std::size_t> k, std::optional<double> min_score, std::optional<double> min_agreement,
          std::optional<double> gate_max_lower_walls, std::optional<double> gate_min_overlap_m2,
-         std::optional<double> min_p_correct, bool paper, unsigned threads, const py::object& progress) {
-        const auto options = pair_options(door_width, source_door_width, dest_door_width, allow_reflection, estimate_scale, k,
-                                           min_score, min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct,
-                                           paper, threads);
+         std::optional<double> min_p_correct, bool paper, unsigned threads, const py::object& progress,
+         const py::object& params) {
+        auto options = pair_options(door_width, source_door_width, dest_door_width, allow_reflection, estimate_scale, k,
+                                     min_score, min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct,
+                                     paper, threads);
+        options.settings = settings_from(params);
         const am::ProgressCallback report = python_progress(progress);
         return MatchRun{am::detail::with_default_matcher(options,
                                                          [&](auto matcher) {
@@ -637,32 +669,59 @@ void bind_match(py::module_& m) {
       py::arg("k") = py::none(), py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
       py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
       py::arg("min_p_correct") = py::none(), py::arg("paper") = false, py::arg("threads") = am::default_program_threads,
-      py::arg("progress") = py::none(), release_gil(),
+      py::arg("progress") = py::none(), py::arg("params") = py::none(), release_gil(),
       "Segments both maps and matches source onto dest, as `areamatch match` (same options, same result). "
+      "params: any settings by name, {'refinement.gates_m': [2, 1, 0.5], 'rooms.door_width_m': 1.5} "
+      "(areamatch.parameters() lists them), applied after the other options, the door widths last. "
       "progress: called with (stage, done, total) at the start of each stage ('load', 'segment', 'prepare', "
       "'select', 'check'; 'scale' per candidate scale); an exception it raises stops the match and is raised here.");
 
 }
 
+/// The settings table (parameters.hpp) with typed values.
+py::list parameter_list(bool paper) {
+  py::list out;
+  auto add = [&out](const char* of) {
+    return [&out, of](const am::ParameterInfo& info, const auto& field) {
+      py::dict row;
+      row["name"] = info.name;
+      row["value"] = py::cast(field);
+      row["meaning"] = info.meaning;
+      row["of"] = of;
+      row["shapes_map_data"] = info.shapes_map_data;
+      out.append(row);
+    };
+  };
+  const am::VoronoiSegmenterParams segmenter;
+  const am::MatcherParams matcher = paper ? am::MatcherParams::paper() : am::MatcherParams{};
+  am::for_each_segmenter_parameter(segmenter, add("segmenter"));
+  am::for_each_matcher_parameter(matcher, add("matcher"));
+  return out;
+}
+
 /// Matcher: prepare, match, merge.
 void bind_matcher(py::module_& m) {
+  m.def("parameters", &parameter_list, py::kw_only(), py::arg("paper") = false,
+        "Every setting that params= takes, as `areamatch parameters` lists them: dicts of name, value (the default; "
+        "the paper's with paper=True), meaning, of ('segmenter' or 'matcher') and shapes_map_data.");
   py::class_<PyMatcher>(m, "Matcher", "The default matcher with options, for prepared maps and merging.")
       .def(py::init([](std::optional<double> door_width, bool allow_reflection, std::optional<std::size_t> k,
                        std::optional<double> min_score, std::optional<double> min_agreement,
                        std::optional<double> gate_max_lower_walls, std::optional<double> gate_min_overlap_m2,
-                       std::optional<double> min_p_correct, unsigned threads) {
+                       std::optional<double> min_p_correct, unsigned threads, const py::object& params) {
              PyMatcher p;
              p.options = pair_options(door_width, std::nullopt, std::nullopt, allow_reflection, false, k, min_score,
                                       min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct, false, threads);
-             am::detail::apply_match_options(p.matcher.params, p.options);
-             p.matcher.segmenter = am::detail::segmenter_with_door(am::VoronoiSegmenter{}, door_width);
-             p.matcher.params.validate();
+             p.options.settings = settings_from(params);
+             p.matcher = am::detail::configured_matcher(DefaultMatcher{}, p.options);
+             p.matcher.segmenter = am::detail::segmenter_with_door(p.matcher.segmenter, door_width);
              return p;
            }),
            py::kw_only(), py::arg("door_width_m") = py::none(), py::arg("allow_reflection") = false, py::arg("k") = py::none(),
            py::arg("min_score") = py::none(), py::arg("min_agreement") = py::none(),
            py::arg("gate_max_lower_walls") = py::none(), py::arg("gate_min_overlap_m2") = py::none(),
-           py::arg("min_p_correct") = py::none(), py::arg("threads") = am::default_program_threads)
+           py::arg("min_p_correct") = py::none(), py::arg("threads") = am::default_program_threads,
+           py::arg("params") = py::none())
       .def("prepare", [](const PyMatcher& p, const am::OccupancyGrid& grid) { return p.matcher.prepare(grid); }, py::arg("map"),
            release_gil(), "Segments the map and builds its match data once.")
       .def(

@@ -199,3 +199,34 @@ def test_shared_pairs_equal_the_cli(shared_dir, cli):
         assert without_timings(python.to_dict()) == without_timings(json.loads(out.stdout)), pair["name"]
         accepted += python.ok
     assert accepted >= 22
+
+
+def test_any_setting_by_name_equals_the_cli(robot, building, cli, tmp_path):
+    # One table of settings (parameters.hpp) for C++, the program's --set and params= here.
+    names = {row["name"] for row in areamatch.parameters()}
+    assert {"k", "rooms.door_width_m", "refinement.gates_m", "decision.min_agreement"} <= names
+    defaults = {row["name"]: row["value"] for row in areamatch.parameters()}
+    assert defaults["refinement.gates_m"] == [2.0, 1.2, 0.7, 0.4] and defaults["k"] == 10
+    assert {row["name"]: row["value"] for row in areamatch.parameters(paper=True)}["k"] == 3
+    params = {"refinement.gates_m": [2, 1, 0.5], "rooms.door_width_m": 1.4, "allow_reflection": True,
+              "hypotheses.min_area_overlap": 0.4}
+    source = robot.map.save(str(tmp_path / "robot.pgm"))
+    dest = building.layout.save(str(tmp_path / "layout.png"))
+    out = subprocess.run([cli, "match", source, dest, "--json", "--set", "refinement.gates_m=2,1,0.5",
+                          "--set", "rooms.door_width_m=1.4", "--set=allow_reflection=true",
+                          "--set", "hypotheses.min_area_overlap=0.4"], capture_output=True, text=True)
+    assert out.returncode in (0, 1), out.stderr
+    python = areamatch.match(areamatch.load_map(source), areamatch.load_map(dest), params=params)
+    assert without_timings(python.to_dict()) == without_timings(json.loads(out.stdout))
+    plain = areamatch.match(areamatch.load_map(source), areamatch.load_map(dest))
+    assert without_timings(python.to_dict()) != without_timings(plain.to_dict())
+    matcher = areamatch.Matcher(params=params)
+    assert without_timings(matcher.match(matcher.prepare(areamatch.load_map(source)),
+                                         matcher.prepare(areamatch.load_map(dest))).to_dict()) == \
+        without_timings(python.to_dict())
+    with pytest.raises(ValueError, match="did you mean decision.min_agreement"):
+        areamatch.Matcher(params={"decision.min_agrement": 0.9})
+    with pytest.raises(ValueError, match="must be true or false"):
+        areamatch.match(robot.map, building.layout, params={"refine": "maybe"})
+    with pytest.raises(ValueError, match="params must be a dict"):
+        areamatch.match(robot.map, building.layout, params=[("k", 3)])

@@ -120,7 +120,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
                     c_ambiguous = column("ambiguous"), c_different = column("different_buildings"),
                     c_failure = column("failure"), c_truth = column("transform_correct"),
                     c_forward = column("forward_wall_agreement"), c_reverse = column("reverse_wall_agreement"),
-                    c_rooms = column("room_agreement"), c_confidence = column("confidence"), c_overlap = column("overlap_m2"),
+                    c_rooms = column("room_agreement"), c_margin = column("margin"), c_overlap = column("overlap_m2"),
                     c_turn = column("turn_margin"), c_iou = column("free_iou"),
                     c_occupied = column("occupied_wall_agreement"),
                     c_p = column("p_correct"), c_agreement = column("agreement");
@@ -170,7 +170,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     r.evidence.turn_margin = value(f, c_turn);
     r.evidence.free_iou = value(f, c_iou);
     r.evidence.occupied_wall_agreement = value(f, c_occupied);
-    r.confidence = value(f, c_confidence);
+    r.margin = value(f, c_margin);
     row.sample.features = areamatch::decision_features(r);
     row.agreement = value(f, c_agreement);
     row.lower_walls = areamatch::lower_wall_agreement(r.evidence);

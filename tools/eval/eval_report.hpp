@@ -129,7 +129,7 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
   using detail::format_double;
   std::string out =
       "name,kind,source,destination,ambiguous,different_buildings,source_areas,dest_areas,segment_source_ms,segment_dest_ms,match_ms,total_ms,ok,reason,"
-      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,confidence,p_correct,agreement,wall_agreement,reverse_wall_agreement,forward_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,overlap_m2,turn_margin,occupied_wall_agreement,rotation_error_deg,displacement_m,scale_error,correct,transform_correct,"
+      "rotation_deg,translation_x_m,translation_y_m,scale,scale_estimated,reflected,score,margin,p_correct,agreement,wall_agreement,reverse_wall_agreement,forward_wall_agreement,free_iou,source_on_dest,dest_on_source,passage_agreement,room_agreement,overlap_m2,turn_margin,occupied_wall_agreement,rotation_error_deg,displacement_m,scale_error,correct,transform_correct,"
       "repeatable,runs,failure\n";
   for (const auto& r : rows) {
     const bool ran = r.failure.empty();
@@ -146,7 +146,7 @@ inline std::string eval_csv(const std::vector<PairEvaluation>& rows) {
     out += number(T.rotation * 180.0 / pi) + "," + number(T.translation.x()) + "," + number(T.translation.y()) + "," +
            number(T.scale) + "," + (ran ? std::string(r.result.scale_estimated ? "true" : "false") : std::string()) + "," +
            (ran ? std::string(T.reflected ? "true" : "false") : std::string()) + ",";
-    out += number(r.result.score) + "," + number(r.result.confidence) + "," + number(r.result.p_correct) + ",";
+    out += number(r.result.score) + "," + number(r.result.margin) + "," + number(r.result.p_correct) + ",";
     const MatchEvidence& e = r.result.evidence;
     for (double v : {e.agreement, e.wall_agreement, e.reverse_wall_agreement, e.forward_wall_agreement, e.free_iou, e.source_on_dest,
                      e.dest_on_source, e.passage_agreement, e.room_agreement, e.overlap_m2, e.turn_margin,

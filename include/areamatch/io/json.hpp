@@ -94,7 +94,7 @@ inline std::string json_pixel_transform(const PixelTransform& m) {
 /// A match result as one JSON object on one line: ok, reason and rejection (when not ok: "different
 /// places", "not sure" or "no answer", `Rejection`), the transform in
 /// world terms (rotation_deg, translation_m, scale, reflected) and as pixel_transform, score,
-/// confidence and its two margins, p_correct, matched_areas, statistics and timings (seconds).
+/// margin and the two it is the least of, p_correct, matched_areas, statistics and timings (seconds).
 inline std::string match_result_json(const MatchResult& r) {
   using detail::json_number;
   const Similarity2& T = r.T_dest_source;
@@ -105,7 +105,7 @@ inline std::string match_result_json(const MatchResult& r) {
   out += ", \"scale\": " + json_number(T.scale) + ", \"scale_estimated\": " + (r.scale_estimated ? "true" : "false") +
          ", \"reflected\": " + (T.reflected ? "true" : "false");
   out += ", \"pixel_transform\": " + detail::json_pixel_transform(r.pixel_transform);
-  out += ", \"score\": " + json_number(r.score) + ", \"confidence\": " + json_number(r.confidence) +
+  out += ", \"score\": " + json_number(r.score) + ", \"margin\": " + json_number(r.margin) +
          ", \"ambiguous\": " + (r.ambiguous ? "true" : "false") + ", \"p_correct\": " + json_number(r.p_correct);
   out += ", \"margin_different\": " + json_number(r.margin_different) +
          ", \"margin_mirrored\": " + json_number(r.margin_mirrored);

@@ -18,6 +18,7 @@
 #include "../detail/parallel.hpp"
 #include "../detail/timing.hpp"
 #include "../matcher.hpp"
+#include "../parameters.hpp"
 #include "../segment/voronoi_segmenter.hpp"
 
 #include <algorithm>
@@ -54,6 +55,10 @@ struct MapPairOptions {
   /// so: `MatcherParams::threads`); the same result for any count. Unset: the matcher's own (1 for
   /// the overloads without a matcher).
   std::optional<unsigned> threads;
+  /// Any settings of the table (parameters.hpp: `{"refinement.gates_m", "2,1,0.5"}`), applied
+  /// in order after the fields above, except the door widths, which apply last. A segmenter
+  /// setting needs `VoronoiSegmenter`.
+  std::vector<ParameterSetting> settings;
 };
 
 /// The thread count the `areamatch` program and the Python module use unless told (`--threads`,
@@ -89,8 +94,8 @@ Segmenter segmenter_with_door(Segmenter segmenter, const std::optional<double>& 
   return segmenter;
 }
 
-/// Sets what `options` asks of the matcher's parameters (the load, door-width and `paper`
-/// options are the caller's).
+/// Sets what the named fields of `options` ask of the matcher's parameters (the load, door-width,
+/// `paper` and `settings` options are the caller's).
 inline void apply_match_options(MatcherParams& params, const MapPairOptions& options) {
   // Only what is set: a matcher's own settings are kept otherwise (they were overwritten by the
   // defaults of these two until 2026-12-05).
@@ -102,6 +107,26 @@ inline void apply_match_options(MatcherParams& params, const MapPairOptions& opt
   if (options.gate_max_lower_walls) params.decision.gate_max_lower_walls = *options.gate_max_lower_walls;
   if (options.gate_min_overlap_m2) params.decision.gate_min_overlap_m2 = *options.gate_min_overlap_m2;
   if (options.min_p_correct) params.decision.min_p_correct = *options.min_p_correct;
+}
+
+/// `matcher` with what `options` asks of its parameters, then `options.settings` (a segmenter
+/// setting only where the segmenter is `VoronoiSegmenter`; else refused rather than ignored).
+template <class M>
+M configured_matcher(const M& matcher, const MapPairOptions& options) {
+  M out = matcher;
+  apply_match_options(out.params, options);
+  if constexpr (std::is_same_v<std::decay_t<decltype(out.segmenter)>, VoronoiSegmenter>) {
+    set_parameters(out.segmenter.params, out.params, options.settings);
+  } else {
+    for (const ParameterSetting& s : options.settings) {
+      if (parameter_is_segmenters(s.name)) {
+        throw parameter_error("setting " + s.name + ": only VoronoiSegmenter has it; set the parameters of your own segmenter instead");
+      }
+    }
+    VoronoiSegmenterParams none;  // holds no setting: each was checked above
+    set_parameters(none, out.params, options.settings);
+  }
+  return out;
 }
 
 /// One end-to-end run: `get_grid(0)` (the source) and `get_grid(1)` (the destination) are
@@ -118,6 +143,7 @@ MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid
   MapPairRun run;
   double segment_s[2] = {0.0, 0.0};
   SerialProgress progress(matcher.progress);  // the two maps are made on two threads
+  M configured = configured_matcher(matcher, options);
   auto make_map = [&](std::size_t i) {
     const bool source = i == 0;
     OccupancyGrid& grid = source ? run.source : run.dest;
@@ -127,11 +153,9 @@ MapPairRun run_map_pair(const M& matcher, const MapPairOptions& options, GetGrid
     progress("segment");
     const auto segment_start = clock::now();
     (source ? run.source_graph : run.dest_graph) =
-        segmenter_with_door(matcher.segmenter, source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
+        segmenter_with_door(configured.segmenter, source ? options.source_door_width_m : options.dest_door_width_m).segment(grid);
     segment_s[i] = seconds_since(segment_start);
   };
-  M configured = matcher;
-  apply_match_options(configured.params, options);
   if (options.estimate_scale) {
     for_each_index(2, configured.params.threads, make_map);
     const auto match_start = clock::now();

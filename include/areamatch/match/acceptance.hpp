@@ -6,7 +6,7 @@
 /// (`min_agreement`, `accept_p_correct`; the agreement alone does not do where the walls agree both
 /// ways, `gate_max_lower_walls`, or on little shared free space, `gate_min_overlap_m2`), when the
 /// model finds it too likely wrong (`min_p_correct`), or when a rival is too close
-/// (`min_confidence`); and words each refusal.
+/// (`min_margin`); and words each refusal.
 
 #include "../detail/format.hpp"
 #include "decision.hpp"
@@ -84,13 +84,13 @@ inline Refusal refusal(const MatchResult& result, const DecisionParams& rule, bo
     return {weak_words + "the answer is too likely wrong: " + p_text + " < min_p_correct " +
                 format_double(rule.min_p_correct) + " (wall agreement " +
                 format_fixed(evidence.forward_wall_agreement, 3) + " / " + format_fixed(evidence.reverse_wall_agreement, 3) +
-                ", rooms " + format_fixed(evidence.room_agreement, 3) + ", margin " + format_fixed(result.confidence, 3) +
+                ", rooms " + format_fixed(evidence.room_agreement, 3) + ", margin " + format_fixed(result.margin, 3) +
                 ", overlap " + format_fixed(evidence.overlap_m2, 1) + " m²)",
             weak};
   }
-  if (result.confidence < rule.min_confidence) {
-    return {"not sure: ambiguous: a different transform scores within " + format_fixed(result.confidence, 3) +
-                " of the best (min_confidence " + format_double(rule.min_confidence) + ")",
+  if (result.margin < rule.min_margin) {
+    return {"not sure: ambiguous: a different transform scores within " + format_fixed(result.margin, 3) +
+                " of the best (min_margin " + format_double(rule.min_margin) + ")",
             Rejection::not_sure};
   }
   return {};

@@ -75,7 +75,7 @@ void describe_answer(const MatcherParams& params, const AreaGraph& source, const
   result.evidence = measure_evidence(source, dest, source_fine, dest_fine, edges, best.T, params.wall_inlier_distance_m,
                                      params.passage_distance_m, params.agreement_iou_weight);
   if (selected.refined) measure_turn_margin(source_fine, dest_fine, edges, dest_data.wall_direction, params, result);
-  result.ambiguous = result.confidence < params.ambiguity_margin;
+  result.ambiguous = result.margin < params.ambiguity_margin;
   result.p_correct = p_correct(decision_features(result), params.decision);
 }
 

@@ -10,7 +10,7 @@
 ///   walls_best, walls_worst  the better and the worse of the two overlap-restricted wall
 ///                            agreements (`MatchEvidence::forward/reverse_wall_agreement`)
 ///   rooms                    `MatchEvidence::room_agreement`: the common part cut into the same rooms
-///   margin, log_margin       `MatchResult::confidence` and log10(confidence + 0.01): how far the
+///   margin, log_margin       `MatchResult::margin` and log10(margin + 0.01): how far the
 ///                            answer stands out from the pair's own alternatives (other clusters'
 ///                            refined answers, the mirror); the log spreads the small margins
 ///                            where right and wrong answers part (0.003 against 0.1)
@@ -75,7 +75,7 @@ struct DecisionFeatures {
 /// when its whole-map score is at least `min_score`, p ≥ `accept_p_correct` or the agreement gate
 /// lets it through (agreement ≥ `min_agreement`, the lower wall agreement ≤ `gate_max_lower_walls`,
 /// at least `gate_min_overlap_m2` of shared free space), p ≥ `min_p_correct`, and no rival is
-/// within `min_confidence`. match/acceptance.hpp applies it and words each refusal.
+/// within `min_margin`. match/acceptance.hpp applies it and words each refusal.
 struct DecisionParams {
   /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected.
   double min_score = 0.25;
@@ -96,7 +96,7 @@ struct DecisionParams {
   /// chosen as `gate_max_lower_walls` was (docs/evaluation.md). 0: the gate whatever the overlap.
   double gate_min_overlap_m2 = 100.0;
   /// Below this margin to a different or mirrored rival the answer is rejected.
-  double min_confidence = 0.0;
+  double min_margin = 0.0;
   /// Fitted by `areamatch calibrate` (l2 = 1) on the 7392 rows of `scripts/calibration_data.sh`
   /// (141 buildings: shared/pairs.json and its pairs of different buildings both ways,
   /// shared/handheld/pairs.json with and without reflection and its pairs of different places,
@@ -132,7 +132,7 @@ struct DecisionParams {
     detail::require_non_negative(min_agreement, "DecisionParams::min_agreement");
     detail::require_non_negative(gate_max_lower_walls, "DecisionParams::gate_max_lower_walls");
     detail::require_non_negative(gate_min_overlap_m2, "DecisionParams::gate_min_overlap_m2");
-    if (!std::isfinite(min_confidence)) throw parameter_error("DecisionParams::min_confidence must be finite");
+    if (!std::isfinite(min_margin)) throw parameter_error("DecisionParams::min_margin must be finite");
     if (!std::isfinite(bias)) throw parameter_error("DecisionParams::bias must be finite");
     for (double w : weights) {
       if (!std::isfinite(w)) throw parameter_error("DecisionParams::weights must be finite");
@@ -161,7 +161,7 @@ inline DecisionFeatures decision_features(const MatchResult& r) {
   const MatchEvidence& e = r.evidence;
   auto unit = [](double v) { return std::isfinite(v) ? std::clamp(v, 0.0, 1.0) : 0.0; };
   DecisionFeatures f;
-  const double margin = unit(r.confidence);
+  const double margin = unit(r.margin);
   // Not measured (the turn check needs the refinement): no sign that the answer stands out.
   const double turn_margin = std::isfinite(e.turn_margin) ? std::clamp(e.turn_margin, -1.0, 1.0) : 0.0;
   f["walls_best"] = unit(std::max(e.forward_wall_agreement, e.reverse_wall_agreement));

@@ -47,24 +47,6 @@ struct MapView {
   const MapData<Descriptors>* data;
 };
 
-/// The parameters that shape `MapData`: a prepared map serves the matchers that agree on them.
-struct MapDataKey {
-  double coarse_cell_m = 0.0, fine_cell_m = 0.0, point_spacing_m = 0.0, lookup_cell_m = 0.0, margin_m = 0.0,
-         normal_radius_m = 0.0, occupied_spacing_m = 0.0, occupied_near_m = 0.0, occupied_context_m = 0.0,
-         free_side_radius_m = 0.0;  // 0: no free sides
-  int max_points = 0;
-  bool wall_directions = false;
-  WallDirectionParams wall_direction;
-  bool operator==(const MapDataKey& o) const {
-    return coarse_cell_m == o.coarse_cell_m && fine_cell_m == o.fine_cell_m && point_spacing_m == o.point_spacing_m &&
-           lookup_cell_m == o.lookup_cell_m && margin_m == o.margin_m && normal_radius_m == o.normal_radius_m &&
-           occupied_spacing_m == o.occupied_spacing_m && occupied_near_m == o.occupied_near_m &&
-           occupied_context_m == o.occupied_context_m && free_side_radius_m == o.free_side_radius_m &&
-           max_points == o.max_points &&
-           wall_directions == o.wall_directions && wall_direction == o.wall_direction;
-  }
-};
-
 /// The lookups reach this far beyond the edges: every distance they are asked about.
 inline double lookup_margin(const MatcherParams& params) {
   const auto& gates = params.refinement.gates_m;
@@ -73,18 +55,6 @@ inline double lookup_margin(const MatcherParams& params) {
                    params.wall_inlier_distance_m, params.candidate_wall_distance_m});
 }
 
-/// The key of the data `params` builds; `normals`: the lookup carries normals (needed by the
-/// destination's for point-to-line ICP, not by the source's).
-inline MapDataKey map_data_key(const MatcherParams& params, bool normals) {
-  const RefineParams& r = params.refinement;
-  return {params.coarse_cell_m, params.fine_cell_m, r.point_spacing_m, r.lookup_cell_m, lookup_margin(params),
-          normals && r.point_to_line ? r.normal_radius_m : 0.0, params.occupied_point_spacing_m,
-          params.occupied_wall_distance_m, params.occupied_wall_context_m, r.same_side_only ? r.free_side_radius_m : 0.0,
-          r.max_points, params.hypotheses.wall_directions,
-          params.hypotheses.wall_direction};
-}
-
-/// What matching builds from one map alone, with the Features policy `features`.
 /// The dense lookup over a map's free-space edge cells (points every half lookup cell) reaching
 /// `margin_m`: with normals for point-to-line ICP onto it when `normals`, and with each point's
 /// free side (`same_side_only` ICP onto it) when `sides`.

@@ -1,7 +1,7 @@
 #pragma once
 /// \file match/margins.hpp
 /// How far the answer stands out from its rivals: the selection's other finalists
-/// (`MatchResult::margin_different`, `margin_mirrored`, `confidence`) and its own quarter turns
+/// (`MatchResult::margin_different`, `margin_mirrored`, `margin`) and its own quarter turns
 /// and mirror images (`MatchEvidence::turn_margin`).
 
 #include "../transform.hpp"
@@ -24,7 +24,7 @@ namespace areamatch::detail {
 
 /// Margins of the answer (the first finalist) over the best clearly different finalist and the
 /// best mirrored one, by the finalists' own scores when the selection's are comparable, else by
-/// free-space IoU; `confidence` is the smallest of the answer's score and the two margins.
+/// free-space IoU; `margin` is the smallest of the answer's score and the two margins.
 inline void measure_margins(const AreaRaster& source_fine, const AreaRaster& dest_fine, const Selected& selected,
                             const MatcherParams& params, MatchResult& result) {
   const std::vector<ScoredTransform>& finalists = selected.finalists;
@@ -43,10 +43,10 @@ inline void measure_margins(const AreaRaster& source_fine, const AreaRaster& des
   }
   if (rival_different >= 0.0) result.margin_different = best_score - rival_different;
   if (params.allow_reflection && rival_mirrored >= 0.0) result.margin_mirrored = best_score - rival_mirrored;
-  double confidence = best_score;
-  if (!std::isnan(result.margin_different)) confidence = std::min(confidence, result.margin_different);
-  if (!std::isnan(result.margin_mirrored)) confidence = std::min(confidence, result.margin_mirrored);
-  result.confidence = confidence;
+  double margin = best_score;
+  if (!std::isnan(result.margin_different)) margin = std::min(margin, result.margin_different);
+  if (!std::isnan(result.margin_mirrored)) margin = std::min(margin, result.margin_mirrored);
+  result.margin = margin;
 }
 
 /// `MatchEvidence::turn_margin`: the answer against its own quarter turns about the centre of

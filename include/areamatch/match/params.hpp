@@ -75,11 +75,11 @@ struct MatcherParams {
 
   // Decision.
   /// Transforms closer than these (rotation, and displacement of the source's free-space
-  /// centroid) count as the same answer when the confidence margin is computed.
+  /// centroid) count as the same answer when the margin (`MatchResult::margin`) is computed.
   double different_rotation_rad = 3.0 * pi / 180.0;
   double different_translation_m = 1.0;
   /// The accept/reject rule — its thresholds (`min_score`, `min_agreement`, the agreement gate's,
-  /// `accept_p_correct`, `min_p_correct`, `min_confidence`) and the calibrated model of
+  /// `accept_p_correct`, `min_p_correct`, `min_margin`) and the calibrated model of
   /// `MatchResult::p_correct` — in one place (match/decision.hpp; applied by match/acceptance.hpp).
   DecisionParams decision;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
@@ -117,7 +117,7 @@ struct MatcherParams {
     p.decision.gate_min_overlap_m2 = 0.0;
     p.decision.min_p_correct = 0.0;
     p.decision.accept_p_correct = 1.0;
-    p.decision.min_confidence = -1.0;    // it always answers
+    p.decision.min_margin = -1.0;    // it always answers
     return p;
   }
 

@@ -147,10 +147,10 @@ struct MatchResult {
   /// min(margin_different, margin_mirrored): how much better the result scores than the
   /// best clearly different transform and than the best transform on the other side of the
   /// mirror. Small means ambiguous (a near-symmetric building).
-  double confidence = 0.0;
+  double margin = 0.0;
   double margin_different = std::numeric_limits<double>::quiet_NaN();  ///< NaN when there is no rival
   double margin_mirrored = std::numeric_limits<double>::quiet_NaN();   ///< NaN without allow_reflection
-  bool ambiguous = false;          ///< confidence below `MatcherParams::ambiguity_margin`
+  bool ambiguous = false;          ///< margin below `MatcherParams::ambiguity_margin`
   /// The calibrated probability that the transform is right (match/decision.hpp); `ok` needs at
   /// least `DecisionParams::min_p_correct`.
   double p_correct = 0.0;

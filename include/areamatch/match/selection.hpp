@@ -5,7 +5,7 @@
 ///
 /// A selection policy reads the clusters (best first, from the Clusterer) with everything the
 /// matcher built for the pair, and returns its finalists, best first: the first is the answer,
-/// the others are the rivals its margins are measured against (`MatchResult::confidence`). It
+/// the others are the rivals its margins are measured against (`MatchResult::margin`). It
 /// must be deterministic, and with `MatcherParams::threads` ≥ 2 it may spread its work with
 /// `detail::for_each_index` as long as the result does not depend on the thread count. The
 /// smallest conforming type:
@@ -172,7 +172,7 @@ struct WholeMapSelection {
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
 
     // Finalists: the best few, plus the best on the other side of the mirror and the best clearly
-    // different transform, so that the confidence margins compare refined with refined.
+    // different transform, so that the margins compare refined with refined.
     Selected out;
     out.comparable_scores = true;
     out.refined = params.refine;

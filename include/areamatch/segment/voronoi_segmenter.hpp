@@ -63,6 +63,27 @@ struct VoronoiSegmenter {
       rooms.door_width_m = door_width_m;
       return *this;
     }
+
+    /// Checks every field; the two that the segmenter derives from others (`skeleton.keep_clearance_m`
+    /// from the door width, `areas.min_clearance_m` from `skeleton.min_clearance_m`) are refused
+    /// when set, since a value there would be overwritten, not used.
+    void validate() const {
+      binarize.validate();
+      boundary.validate();
+      skeleton.validate();
+      rooms.validate();
+      areas.validate();
+      // Parameters that must agree between stages are derived from one place; a value set in the
+      // other place would be overwritten, so it is refused instead of silently ignored.
+      if (skeleton.keep_clearance_m != SkeletonParams{}.keep_clearance_m) {
+        throw parameter_error("SkeletonParams::keep_clearance_m is set by VoronoiSegmenter from the door width "
+                              "(RoomParams::door_width_m, with_door_width); set that instead");
+      }
+      if (areas.min_clearance_m != AreaParams{}.min_clearance_m && areas.min_clearance_m != skeleton.min_clearance_m) {
+        throw parameter_error("AreaParams::min_clearance_m is set by VoronoiSegmenter from SkeletonParams::min_clearance_m; "
+                              "set that instead");
+      }
+    }
   };
   Params params;
 
@@ -85,21 +106,7 @@ struct VoronoiSegmenter {
       throw limit_error("cannot segment a grid of " + std::to_string(grid.width()) + "x" + std::to_string(grid.height()) +
                         " cells: more than areamatch::max_grid_cells (" + std::to_string(max_grid_cells) + ")");
     }
-    params.binarize.validate();
-    params.boundary.validate();
-    params.skeleton.validate();
-    params.rooms.validate();
-    params.areas.validate();
-    // Parameters that must agree between stages are derived from one place; a value set in the
-    // other place would be overwritten, so it is refused instead of silently ignored.
-    if (params.skeleton.keep_clearance_m != SkeletonParams{}.keep_clearance_m) {
-      throw parameter_error("SkeletonParams::keep_clearance_m is set by VoronoiSegmenter from the door width "
-                            "(RoomParams::door_width_m, with_door_width); set that instead");
-    }
-    if (params.areas.min_clearance_m != AreaParams{}.min_clearance_m && params.areas.min_clearance_m != params.skeleton.min_clearance_m) {
-      throw parameter_error("AreaParams::min_clearance_m is set by VoronoiSegmenter from SkeletonParams::min_clearance_m; "
-                            "set that instead");
-    }
+    params.validate();
     SkeletonParams skeleton_params = params.skeleton;
     skeleton_params.keep_clearance_m = detail::room_clearance_m(params.rooms.door_width_m, grid.resolution());
     AreaParams area_params = params.areas;
