@@ -35,9 +35,7 @@ struct Prepared {
 };
 
 areamatch::Matcher<> matcher_for(const areamatch::MapPairOptions& options) {
-  areamatch::Matcher<> matcher;
-  areamatch::detail::apply_match_options(matcher.params, options);
-  return matcher;
+  return areamatch::detail::configured_matcher(areamatch::Matcher<>{}, options);
 }
 
 void match_stage(benchmark::State& state, const Prepared& p) {

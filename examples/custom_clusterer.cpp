@@ -48,7 +48,7 @@ int main() {
   areamatch::Matcher<areamatch::VoronoiSegmenter, areamatch::PaperFeatures, areamatch::PaperWeights, RotationBins> matcher;
   matcher.params.allow_reflection = true;
   // Coarse bins hold many different poses: verify more of each (with 8 the best was 3.9 m off).
-  matcher.params.members_per_cluster = 64;
+  matcher.selection.params.members_per_cluster = 64;
   const areamatch::MatchResult result = matcher.match(robot.grid, building.layout);
   const double error_deg =
       std::abs(areamatch::wrap_angle(result.T_dest_source.rotation - robot.T_dest_source.rotation)) * 180.0 / areamatch::pi;

@@ -132,8 +132,8 @@ TEST_CASE("a map against one 100 times its area: an answer or a clear refusal, i
     MESSAGE("matched in " << seconds << " s: " << r.statistics.hypotheses << " hypotheses, " << r.statistics.clusters
                           << " clusters");
     CHECK(seconds < (areamatch_test::quick_tests() ? 120.0 : 30.0));
-    CHECK(r.statistics.verified <= Matcher<>{}.params.verify_candidates);
-    CHECK(r.statistics.refined <= Matcher<>{}.params.refine_candidates + 1);
+    CHECK(r.statistics.verified <= Matcher<>{}.selection.params.verify_candidates);
+    CHECK(r.statistics.refined <= Matcher<>{}.selection.params.refine_candidates + 1);
   }
 }
 

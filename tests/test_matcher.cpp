@@ -1179,4 +1179,13 @@ TEST_CASE("match_grids keeps a matcher's own settings where the options leave th
   detail::apply_match_options(applied, MapPairOptions{});
   CHECK(applied.allow_reflection);
   CHECK(applied.threads == 2u);
+  // Settings by name patch the matcher; what they do not name stays the matcher's own.
+  MapPairOptions patch;
+  patch.settings = {{"k", "4"}, {"decision.min_agreement", "0.9"}, {"selection.verify_candidates", "20"}};
+  const Matcher<> patched = detail::configured_matcher(mine, patch);
+  CHECK(patched.params.k == 4);
+  CHECK(patched.params.decision.min_agreement == 0.9);
+  CHECK(patched.selection.params.verify_candidates == 20);
+  CHECK(patched.params.allow_reflection);
+  CHECK(patched.params.threads == 2u);
 }

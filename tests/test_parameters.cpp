@@ -10,6 +10,7 @@
 
 #include <doctest/doctest.h>
 
+#include <algorithm>
 #include <fstream>
 #include <set>
 #include <sstream>
@@ -20,6 +21,11 @@
 using namespace areamatch;
 
 namespace {
+
+/// A segmenter of the user's own: it has no settings of the table.
+struct OwnSegmenter {
+  AreaGraph segment(const OccupancyGrid& grid) const { return VoronoiSegmenter{}.segment(grid); }
+};
 
 std::vector<std::string> values_of(const std::vector<ParameterRow>& rows) {
   std::vector<std::string> out;
@@ -41,14 +47,45 @@ void perturb(T& v) {
   }
 }
 
-/// Perturbs the `index`-th row of the table (segmenter rows first) in place.
-void perturb_row(VoronoiSegmenterParams& s, MatcherParams& m, std::size_t index) {
+/// Perturbs the `index`-th row of the matcher's table in place.
+template <class M>
+void perturb_row(M& matcher, std::size_t index) {
   std::size_t i = 0;
-  auto visit = [&](const ParameterInfo&, auto& field) {
+  for_each_parameter(matcher, [&](const ParameterInfo&, auto& field) {
     if (i++ == index) perturb(field);
-  };
-  for_each_segmenter_parameter(s, visit);
-  for_each_matcher_parameter(m, visit);
+  });
+}
+
+/// Every row of `matcher`'s table reads back exactly and reaches its own field alone.
+template <class M>
+void check_table(const M& start) {
+  const std::vector<ParameterRow> rows = parameter_rows(start);
+  std::set<std::string> names;
+  std::vector<ParameterSetting> all;
+  for (const auto& r : rows) {
+    CHECK_MESSAGE(names.insert(r.name).second, "the name " << r.name << " twice");
+    CHECK_FALSE(r.meaning.empty());
+    all.push_back({r.name, r.value});
+  }
+  // Setting every row to its own text changes nothing.
+  M m = start;
+  set_parameters(m, all);
+  CHECK(values_of(parameter_rows(m)) == values_of(rows));
+
+  for (std::size_t i = 0; i < rows.size(); ++i) {
+    M changed_matcher = start;
+    perturb_row(changed_matcher, i);
+    const std::vector<std::string> changed = values_of(parameter_rows(changed_matcher));
+    for (std::size_t j = 0; j < rows.size(); ++j) {
+      CHECK_MESSAGE((changed[j] != rows[j].value) == (i == j), "perturbing " << rows[i].name << " changed " << rows[j].name);
+    }
+    // Its text is read as that value.
+    M read_back = start;
+    for_each_parameter(read_back, [&](const ParameterInfo& info, auto& field) {
+      if (info.name == rows[i].name) detail::parse_parameter(info.name, changed[i], field);
+    });
+    CHECK(values_of(parameter_rows(read_back)) == changed);
+  }
 }
 
 /// What a prepared map's data holds, as text, and what its lookup answers across the map.
@@ -89,53 +126,25 @@ std::string fingerprint(const Data& d) {
 }  // namespace
 
 TEST_CASE("parameters: every value reads back exactly, and each name reaches its own field alone") {
-  for (const MatcherParams& start : {MatcherParams{}, MatcherParams::paper()}) {
-    const VoronoiSegmenterParams segmenter_start;
-    const std::vector<ParameterRow> rows = parameter_rows(segmenter_start, start);
-    std::set<std::string> names;
-    std::vector<ParameterSetting> all;
-    for (const auto& r : rows) {
-      CHECK_MESSAGE(names.insert(r.name).second, "the name " << r.name << " twice");
-      CHECK_FALSE(r.meaning.empty());
-      all.push_back({r.name, r.value});
-    }
-    // Setting every row to its own text changes nothing.
-    VoronoiSegmenterParams s = segmenter_start;
-    MatcherParams m = start;
-    set_parameters(s, m, all);
-    CHECK(values_of(parameter_rows(s, m)) == values_of(rows));
-
-    for (std::size_t i = 0; i < rows.size(); ++i) {
-      VoronoiSegmenterParams s2 = segmenter_start;
-      MatcherParams m2 = start;
-      perturb_row(s2, m2, i);
-      const std::vector<std::string> changed = values_of(parameter_rows(s2, m2));
-      for (std::size_t j = 0; j < rows.size(); ++j) {
-        CHECK_MESSAGE((changed[j] != rows[j].value) == (i == j), "perturbing " << rows[i].name << " changed " << rows[j].name);
-      }
-      // Its text sets it back, and is read as that value.
-      VoronoiSegmenterParams s3 = segmenter_start;
-      MatcherParams m3 = start;
-      for_each_segmenter_parameter(s3, [&](const ParameterInfo& info, auto& field) {
-        if (info.name == rows[i].name) detail::parse_parameter(info.name, changed[i], field);
-      });
-      for_each_matcher_parameter(m3, [&](const ParameterInfo& info, auto& field) {
-        if (info.name == rows[i].name) detail::parse_parameter(info.name, changed[i], field);
-      });
-      CHECK(values_of(parameter_rows(s3, m3)) == changed);
-    }
-  }
+  check_table(Matcher<>{});
+  check_table(PaperMatcher{});
+  const std::vector<ParameterRow> rows = parameter_rows(Matcher<>{});
+  std::set<std::string> owners;
+  for (const auto& r : rows) owners.insert(r.of);
+  CHECK(owners == std::set<std::string>{"segmenter", "matcher", "clusterer", "selection"});
+  // A matcher of other policies lists what it has: the paper's clusterer, no selection settings.
+  const auto paper = parameter_rows(PaperMatcher{});
+  CHECK(std::any_of(paper.begin(), paper.end(), [](const auto& r) { return r.name == "clusterer.threshold_rad"; }));
+  CHECK(std::none_of(paper.begin(), paper.end(), [](const auto& r) { return r.of == "selection"; }));
 }
 
 TEST_CASE("parameters: names, values and validation refused with messages that name them") {
-  VoronoiSegmenterParams s;
-  MatcherParams m;
+  Matcher<> m;
   auto refused = [&](const std::string& name, const std::string& value) {
-    VoronoiSegmenterParams s2 = s;
-    MatcherParams m2 = m;
+    Matcher<> m2 = m;
     std::string message;
     try {
-      set_parameters(s2, m2, {{name, value}});
+      set_parameters(m2, {{name, value}});
     } catch (const parameter_error& e) {
       message = e.what();
     }
@@ -153,21 +162,31 @@ TEST_CASE("parameters: names, values and validation refused with messages that n
   CHECK(refused("coarse_cell_m", "0").find("coarse_cell_m") != std::string::npos);  // validate()
   CHECK(refused("rooms.door_width_m", "-1").find("door width must be a positive number") != std::string::npos);
   CHECK(refused("k", "0").find("k must be >= 1") != std::string::npos);
+  CHECK(refused("selection.wall_score_weight", "2").find("wall_score_weight must be in [0, 1]") != std::string::npos);
+  CHECK(refused("selection.verify_candidates", "0").find("verify_candidates") != std::string::npos);
+  // Settings the matcher's policies do not have.
+  PaperMatcher paper;
+  CHECK_THROWS_WITH_AS(set_parameters(paper, {{"selection.verify_candidates", "5"}}), doctest::Contains("no parameter named"),
+                       parameter_error);
+  Matcher<OwnSegmenter> own;
+  CHECK_THROWS_WITH_AS(set_parameters(own, {{"rooms.door_width_m", "1.5"}}), doctest::Contains("only VoronoiSegmenter has it"),
+                       parameter_error);
   // Not in the table: what the segmenter derives itself, and how many threads.
   CHECK_FALSE(refused("skeleton.keep_clearance_m", "1").empty());
   CHECK_FALSE(refused("threads", "4").empty());
 
-  set_parameters(s, m, {{"rooms.door_width_m", "1.5"}, {"refinement.gates_m", "2,1,0.5"}, {"allow_reflection", "true"},
-                        {"decision.min_agreement", "0.9"}, {"k", "7"}, {"decision.min_agreement", "0.8"}});
-  CHECK(s.rooms.door_width_m == 1.5);
-  CHECK(m.refinement.gates_m == std::vector<double>{2.0, 1.0, 0.5});
-  CHECK(m.allow_reflection);
-  CHECK(m.k == 7);
-  CHECK(m.decision.min_agreement == 0.8);  // in order: the last wins
+  set_parameters(m, {{"rooms.door_width_m", "1.5"}, {"refinement.gates_m", "2,1,0.5"}, {"allow_reflection", "true"},
+                     {"decision.min_agreement", "0.9"}, {"k", "7"}, {"decision.min_agreement", "0.8"},
+                     {"selection.verify_candidates", "64"}, {"clusterer.translation_m", "0.5"}});
+  CHECK(m.segmenter.params.rooms.door_width_m == 1.5);
+  CHECK(m.params.refinement.gates_m == std::vector<double>{2.0, 1.0, 0.5});
+  CHECK(m.params.allow_reflection);
+  CHECK(m.params.k == 7);
+  CHECK(m.params.decision.min_agreement == 0.8);  // in order: the last wins
+  CHECK(m.selection.params.verify_candidates == 64);
+  CHECK(m.clusterer.params.translation_m == 0.5);
   CHECK(parameter_is_segmenters("rooms.door_width_m"));
   CHECK_FALSE(parameter_is_segmenters("k"));
-  CHECK(parameter_is_known("k"));
-  CHECK_FALSE(parameter_is_known("threads"));
 }
 
 TEST_CASE("parameters: a setting not marked as shaping a prepared map leaves its data as it was") {
@@ -178,14 +197,13 @@ TEST_CASE("parameters: a setting not marked as shaping a prepared map leaves its
   REQUIRE(!graph.areas.empty());
   const std::string base = fingerprint(detail::build_map_data(grid, graph, matcher.features, matcher.params, true));
 
-  const VoronoiSegmenterParams segmenter_defaults;
-  const std::vector<ParameterRow> rows = parameter_rows(segmenter_defaults, matcher.params);
+  const std::vector<ParameterRow> rows = parameter_rows(matcher);
   std::size_t unmarked = 0;
   for (std::size_t i = 0; i < rows.size(); ++i) {
-    if (rows[i].segmenter) continue;
-    VoronoiSegmenterParams s = segmenter_defaults;
-    MatcherParams m = matcher.params;
-    perturb_row(s, m, i);
+    if (rows[i].of == "segmenter") continue;  // the segmentation is the prepared map's own
+    Matcher<> changed = matcher;
+    perturb_row(changed, i);
+    const MatcherParams& m = changed.params;
     const std::string differing = map_data_setting_differing(matcher.params, m);
     CHECK(differing == (rows[i].shapes_map_data ? rows[i].name : std::string()));
     if (rows[i].shapes_map_data) continue;
@@ -194,6 +212,11 @@ TEST_CASE("parameters: a setting not marked as shaping a prepared map leaves its
                   rows[i].name << " changes a prepared map's data but is not marked shapes_map_data");
   }
   CHECK(unmarked > 40);
+
+  // The selection asks the lookups within their reach, or says why it cannot.
+  Matcher<> far = matcher;
+  far.selection.params.candidate_wall_distance_m = 2.5;  // the lookups reach 2 m (refinement.gates_m)
+  CHECK_THROWS_WITH_AS(far.match(grid, grid), doctest::Contains("reaches beyond the edge lookups (2 m"), parameter_error);
 }
 
 TEST_CASE("parameters: docs/parameters.md lists exactly the table") {
@@ -206,7 +229,7 @@ TEST_CASE("parameters: docs/parameters.md lists exactly the table") {
   const auto from = doc.find(begin), to = doc.find(end);
   REQUIRE(from != std::string::npos);
   REQUIRE(to != std::string::npos);
-  const std::string expected = parameters_markdown(VoronoiSegmenterParams{}, MatcherParams{});
+  const std::string expected = parameters_markdown(Matcher<>{});
   CHECK_MESSAGE(doc.substr(from + begin.size(), to - from - begin.size()) == expected,
                 "docs/parameters.md's table is stale: regenerate it with `areamatch parameters --markdown`");
 }

@@ -118,8 +118,7 @@ TEST_CASE("prepared maps give the same results as their grids on every shared pa
   for (const JudgedRow& judged : shared_pair_rows(shared)) {
     REQUIRE(judged.run);
     const MapPairRun& run = *judged.run;
-    Matcher<> matcher;
-    detail::apply_match_options(matcher.params, pair_options(judged.pair, EvalOptions{}));
+    const Matcher<> matcher = detail::configured_matcher(Matcher<>{}, pair_options(judged.pair, EvalOptions{}));
     const MatchResult prepared =
         matcher.match(matcher.prepare(run.source, run.source_graph), matcher.prepare(run.dest, run.dest_graph));
     const std::string a = match_result_json(prepared), b = match_result_json(run.result);

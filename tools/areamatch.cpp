@@ -522,9 +522,26 @@ const char* kSegmentHelp =
     "  --graph OUT.json   write the graph: areas (polygons in metres, world frame), passages, map frame\n"
     "  --json             print the graph as exactly one JSON object on stdout (no summary line)\n";
 
-/// The `--set NAME=VALUE` options, in order (names and values are checked where they are applied).
-std::vector<areamatch::ParameterSetting> settings_from(const Args& args) {
+/// The settings that the shorthand options of `args` stand for (`--k 5` is `k=5`), each checked
+/// here with a message naming the option; the shorthands a command does not take are absent.
+std::vector<areamatch::ParameterSetting> shorthand_settings(const Args& args) {
   std::vector<areamatch::ParameterSetting> settings;
+  auto add = [&](const char* name, const std::optional<double>& value) {
+    if (value) settings.push_back({name, format_double(*value)});
+  };
+  add("k", args.integer("k", 1, 1000));
+  add("decision.min_score", args.fraction("min-score"));
+  add("decision.min_agreement", args.fraction("min-agreement"));
+  add("decision.gate_max_lower_walls", args.number("gate-max-lower-walls", false, true));
+  add("decision.gate_min_overlap_m2", args.number("gate-min-overlap", false, true));
+  add("decision.min_p_correct", args.fraction("min-p-correct"));
+  return settings;
+}
+
+/// The shorthand options' settings, then the `--set NAME=VALUE` ones in order (names and values
+/// are checked where they are applied).
+std::vector<areamatch::ParameterSetting> settings_from(const Args& args) {
+  std::vector<areamatch::ParameterSetting> settings = shorthand_settings(args);
   for (const std::string& given : args.all("set")) {
     const auto eq = given.find('=');
     if (eq == std::string::npos || eq == 0) throw UsageError("--set takes NAME=VALUE, got '" + given + "'");
@@ -545,14 +562,17 @@ areamatch::VoronoiSegmenter segmenter_from(const Args& args, const std::string& 
   if (const auto speckle = args.number("speckle-area", false, true)) segmenter.params.binarize.max_speckle_area_m2 = *speckle;
   if (const auto size = args.number("speckle-size", false, true)) segmenter.params.binarize.max_speckle_size_m = *size;
   if (const auto width = args.number("min-traced-width", false, true)) segmenter.params.boundary.min_traced_width_m = *width;
-  const auto settings = settings_from(args);
-  for (const auto& setting : settings) {
-    if (!areamatch::parameter_is_segmenters(setting.name) && areamatch::parameter_is_known(setting.name)) {
+  // The segmenter's settings of the table; a matching one is named as such, an unknown one with
+  // the nearest known name (set_parameters' message).
+  areamatch::Matcher<> matcher;
+  matcher.segmenter = segmenter;
+  for (const auto& setting : settings_from(args)) {
+    areamatch::set_parameters(matcher, {setting});
+    if (!areamatch::parameter_is_segmenters(setting.name)) {
       throw UsageError("--set " + setting.name + ": a matching setting; this command takes the segmenter's (areamatch parameters)");
     }
   }
-  areamatch::MatcherParams unused;  // receives nothing: each setting was checked above
-  areamatch::set_parameters(segmenter.params, unused, settings);
+  segmenter = matcher.segmenter;
   if (const auto door = door_width(args, door_option)) segmenter.params.with_door_width(*door);
   return segmenter;
 }
@@ -619,11 +639,11 @@ int run_segment(const std::vector<std::string>& tokens) {
 
 const char* kParametersHelp =
     "Usage: areamatch parameters [--paper] [--json | --markdown] [--set NAME=VALUE ...]\n"
-    "Every setting that --set takes (segmenter, then matcher), with its value and what it does.\n"
+    "Every setting that --set takes (segmenter, matcher, clusterer, selection), with its value and what it does.\n"
     "Lengths in metres, areas in m^2, angles in radians; lists as 2,1.2,0.7.\n"
     "  --paper       the values of the paper's matcher (--paper of match and eval)\n"
     "  --set N=V     show the values after these settings (and check them)\n"
-    "  --json        one JSON array: name, value, meaning, of (segmenter/matcher), shapes_map_data\n"
+    "  --json        one JSON array: name, value, meaning, of (whose), shapes_map_data\n"
     "  --markdown    the table of docs/parameters.md\n"
     "A setting marked * shapes what a prepared map holds: maps prepared under another value are refused.\n";
 
@@ -635,29 +655,35 @@ int run_parameters(const std::vector<std::string>& tokens) {
   }
   args.expect_positional(0, "");
   if (args.flag("json") && args.flag("markdown")) throw UsageError("give --json or --markdown, not both");
-  areamatch::VoronoiSegmenterParams segmenter;
-  areamatch::MatcherParams matcher = args.flag("paper") ? areamatch::MatcherParams::paper() : areamatch::MatcherParams{};
-  areamatch::set_parameters(segmenter, matcher, settings_from(args));
-  const auto rows = areamatch::parameter_rows(segmenter, matcher);
+  const auto settings = settings_from(args);
+  auto rows_of = [&](auto matcher) {
+    areamatch::set_parameters(matcher, settings);
+    return std::pair(areamatch::parameter_rows(matcher), areamatch::parameters_markdown(matcher));
+  };
+  const auto [rows, markdown] = args.flag("paper") ? rows_of(areamatch::PaperMatcher{}) : rows_of(areamatch::Matcher<>{});
   if (args.flag("json")) {
     std::string out = "[";
     for (std::size_t i = 0; i < rows.size(); ++i) {
       const auto& r = rows[i];
       out += std::string(i ? ",\n " : "") + "{\"name\": " + areamatch::detail::json_quote(r.name) + ", \"value\": " +
              areamatch::detail::json_quote(r.value) + ", \"meaning\": " + areamatch::detail::json_quote(r.meaning) + ", \"of\": \"" +
-             (r.segmenter ? "segmenter" : "matcher") + "\", \"shapes_map_data\": " + (r.shapes_map_data ? "true" : "false") + "}";
+             r.of + "\", \"shapes_map_data\": " + (r.shapes_map_data ? "true" : "false") + "}";
     }
     std::cout << out << "]\n";
   } else if (args.flag("markdown")) {
-    std::cout << areamatch::parameters_markdown(segmenter, matcher);
+    std::cout << markdown;
   } else {
     std::size_t width = 0;
     for (const auto& r : rows) width = std::max(width, std::min<std::size_t>(r.name.size() + r.value.size() + 5, 56));
-    bool in_matcher = false;
-    std::cout << "segmenter (VoronoiSegmenter::Params):\n";
+    const bool paper = args.flag("paper");
+    const std::map<std::string, std::string> heading = {
+        {"segmenter", "segmenter (VoronoiSegmenter::Params):"},
+        {"matcher", paper ? "matcher (MatcherParams::paper()):" : "matcher (MatcherParams):"},
+        {"clusterer", paper ? "clusterer (AngularClusterer::Params):" : "clusterer (PoseClusterer::Params):"},
+        {"selection", "selection (WholeMapSelection::Params):"}};
+    std::string part;
     for (const auto& r : rows) {
-      if (!r.segmenter && !in_matcher) std::cout << "matcher (MatcherParams" << (args.flag("paper") ? "::paper()" : "") << "):\n";
-      in_matcher = in_matcher || !r.segmenter;
+      if (r.of != part) std::cout << heading.at(part = r.of) << "\n";
       std::string line = "  " + r.name + (r.shapes_map_data ? "*" : "") + " = " + r.value;
       std::cout << line << std::string(width > line.size() ? width - line.size() : 1, ' ') << r.meaning << "\n";
     }
@@ -734,12 +760,6 @@ areamatch::MapPairOptions map_pair_options(const Args& args) {
   const auto door = door_width(args, "door-width");
   options.source_door_width_m = door ? door : door_width(args, "source-door-width");
   options.dest_door_width_m = door ? door : door_width(args, "dest-door-width");
-  if (const auto k = args.integer("k", 1, 1000)) options.k = static_cast<std::size_t>(*k);
-  options.min_score = args.fraction("min-score");
-  options.min_agreement = args.fraction("min-agreement");
-  options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
-  options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
-  options.min_p_correct = args.fraction("min-p-correct");
   options.paper = args.flag("paper");
   options.allow_reflection = args.flag("allow-reflection");
   options.estimate_scale = args.flag("estimate-scale");
@@ -751,8 +771,8 @@ areamatch::MapPairOptions map_pair_options(const Args& args) {
 /// Why an answer was accepted, with the deciding number: the model, or the agreement gate (which
 /// accepts what the model underrates).
 std::string acceptance_line(const areamatch::MatchResult& result, const areamatch::MapPairOptions& options) {
-  areamatch::MatcherParams params = options.paper ? areamatch::PaperMatcher{}.params : areamatch::Matcher<>{}.params;
-  areamatch::detail::apply_match_options(params, options);
+  const areamatch::MatcherParams params = options.paper ? areamatch::detail::configured_matcher(areamatch::PaperMatcher{}, options).params
+                                                        : areamatch::detail::configured_matcher(areamatch::Matcher<>{}, options).params;
   if (result.p_correct >= params.decision.accept_p_correct) {
     return "accepted: p_correct " + format_fixed(result.p_correct, 3) + " >= " + format_double(params.decision.accept_p_correct);
   }
@@ -1249,10 +1269,6 @@ int run_merge(const std::vector<std::string>& tokens) {
   // The matcher's options as `areamatch match` sets them (its threads stay 1: merging spreads pairs).
   areamatch::MapPairOptions match_options;
   match_options.allow_reflection = args.flag("allow-reflection");
-  match_options.min_agreement = args.fraction("min-agreement");
-  match_options.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
-  match_options.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
-  match_options.min_p_correct = args.fraction("min-p-correct");
   match_options.settings = settings_from(args);
   areamatch::Matcher<> matcher = areamatch::detail::configured_matcher(areamatch::Matcher<>{}, match_options);
   matcher.segmenter = areamatch::detail::segmenter_with_door(matcher.segmenter, door_width(args, "door-width"));
@@ -1371,12 +1387,6 @@ int run_eval(const std::vector<std::string>& tokens) {
   options.repeat = static_cast<int>(args.integer("repeat", 1, 1000).value_or(1));
   options.matching.paper = args.flag("paper");
   options.matching.allow_reflection = !args.flag("no-reflection");
-  if (const auto k = args.integer("k", 1, 1000)) options.matching.k = static_cast<std::size_t>(*k);
-  options.matching.min_score = args.fraction("min-score");
-  options.matching.min_agreement = args.fraction("min-agreement");
-  options.matching.gate_max_lower_walls = args.number("gate-max-lower-walls", false, true);
-  options.matching.gate_min_overlap_m2 = args.number("gate-min-overlap", false, true);
-  options.matching.min_p_correct = args.fraction("min-p-correct");
   options.matching.estimate_scale = args.flag("estimate-scale");
   options.matching.settings = settings_from(args);
   options.matching.source_load.resolution = args.number("source-resolution", /*positive=*/true);

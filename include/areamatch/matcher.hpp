@@ -419,7 +419,7 @@ class Matcher {
     }
 
     detail::report(progress, "select");
-    const detail::MapEdges edges = detail::map_edges(source_data, dest_data);
+    const MapEdges edges = detail::map_edges(source_data, dest_data);
     const Selected selected = detail::timed(result.timings.selection_s, [&] {
       return selection.select(SelectionInputs{params, maps, pairs, hypotheses, clusters, source_data.fine(), dest_data.fine(), edges},
                               result.statistics);

@@ -1,14 +1,19 @@
 #pragma once
 /// \file parameter_table.hpp
-/// The table of settings that parameters.hpp reads: each field of `VoronoiSegmenter::Params`
-/// and `MatcherParams` with its dotted name and one line on what it does, in struct order. A
-/// field added to those structs is added here too; `test_parameters` checks that docs/parameters.md
-/// lists exactly these names, and that each name reaches its own field and no other.
+/// The table of settings that parameters.hpp reads: each field of `VoronoiSegmenter::Params`,
+/// `MatcherParams`, the shipped clusterers' and `WholeMapSelection::Params` with its dotted name
+/// and one line on what it does, in struct order. A field added to those structs is added here
+/// too; `test_parameters` checks that docs/parameters.md lists exactly these names, and that each
+/// name reaches its own field and no other.
 
+#include "match/clusterer.hpp"
 #include "match/params.hpp"
+#include "match/selection.hpp"
 #include "segment/voronoi_segmenter.hpp"
 
 #include <string>
+#include <type_traits>
+#include <utility>
 
 namespace areamatch {
 
@@ -110,15 +115,8 @@ void for_each_matcher_parameter(P& p, F&& f) {
   f(info("scale.finalists", "best candidate scales swept and run again"), p.scale.finalists);
   f(info("coarse_cell_m", "raster cell for scoring candidates", true), p.coarse_cell_m);
   f(info("fine_cell_m", "raster cell for the finalists' free-space IoU", true), p.fine_cell_m);
-  f(info("members_per_cluster", "best members of each cluster that get verified"), p.members_per_cluster);
-  f(info("sparse_samples", "source wall points of the cheap first ranking"), p.sparse_samples);
-  f(info("verify_candidates", "candidates ranked again on all source wall points"), p.verify_candidates);
-  f(info("candidate_wall_distance_m", "before ICP, walls this near the other map's edge count", true), p.candidate_wall_distance_m);
-  f(info("refine_candidates", "candidates refined by ICP and scored as finalists"), p.refine_candidates);
   f(info("refine", "ICP refinement"), p.refine);
   for_each_refine_parameter("refinement.", p.refinement, true, f);
-  f(info("refine_on_free_edges", "ICP on the free-space edges (else the area outlines)"), p.refine_on_free_edges);
-  f(info("wall_score_weight", "finalist score = (1 - w) free-space IoU + w edge share"), p.wall_score_weight);
   f(info("wall_inlier_distance_m", "edge points this near the other map's edge count in the score", true), p.wall_inlier_distance_m);
   f(info("occupied_point_spacing_m", "occupied cells thinned to one per square this wide", true), p.occupied_point_spacing_m);
   f(info("occupied_wall_distance_m", "walls against walls: agree within this", true), p.occupied_wall_distance_m);
@@ -149,6 +147,66 @@ void for_each_matcher_parameter(P& p, F&& f) {
     p.correspondences.max_rotation_rad);
   f(info("correspondences.max_shift_m", "nor one moved further"), p.correspondences.max_shift_m);
   f(info("max_areas", "most areas of a map (limit_error beyond)"), p.max_areas);
+}
+
+/// Calls `f(info, field)` for every setting of `WholeMapSelection` (under `selection.`).
+template <class P, class F>
+void for_each_selection_parameter(P& p, F&& f) {
+  auto info = [](const char* name, const char* meaning) { return ParameterInfo{name, meaning, false}; };
+  f(info("selection.members_per_cluster", "best members of each cluster that get verified"), p.members_per_cluster);
+  f(info("selection.sparse_samples", "source wall points of the cheap first ranking"), p.sparse_samples);
+  f(info("selection.verify_candidates", "candidates ranked again on all source wall points"), p.verify_candidates);
+  f(info("selection.candidate_wall_distance_m", "before ICP, walls this near the other map's edge count"),
+    p.candidate_wall_distance_m);
+  f(info("selection.refine_candidates", "candidates refined by ICP and scored as finalists"), p.refine_candidates);
+  f(info("selection.refine_on_free_edges", "ICP on the free-space edges (else the area outlines)"), p.refine_on_free_edges);
+  f(info("selection.wall_score_weight", "finalist score = (1 - w) free-space IoU + w edge share"), p.wall_score_weight);
+}
+
+/// Calls `f(info, field)` for the settings of the shipped clusterers (under `clusterer.`).
+template <class P, class F>
+void for_each_clusterer_parameter(P& p, F&& f) {
+  if constexpr (std::is_same_v<std::remove_const_t<P>, PoseClusterer::Params>) {
+    f(ParameterInfo{"clusterer.rotation_rad", "hypotheses turned less than this apart join a cluster"}, p.rotation_rad);
+    f(ParameterInfo{"clusterer.translation_m", "and moved less than this apart"}, p.translation_m);
+  } else {
+    f(ParameterInfo{"clusterer.threshold_rad", "hypotheses turned less than this apart join a cluster"}, p.threshold_rad);
+    f(ParameterInfo{"clusterer.max_reassignments", "guards the reassignment loop"}, p.max_reassignments);
+  }
+}
+
+namespace detail {
+template <class Policy, class Params>
+inline constexpr bool policy_params_are = std::is_same_v<std::decay_t<decltype(std::declval<Policy&>().params)>, Params>;
+template <class Policy, class = void>
+struct has_params : std::false_type {};
+template <class Policy>
+struct has_params<Policy, std::void_t<decltype(std::declval<Policy&>().params)>> : std::true_type {};
+template <class Policy, class Params>
+constexpr bool policy_has_params() {
+  if constexpr (has_params<Policy>::value) return policy_params_are<Policy, Params>;
+  else return false;
+}
+}  // namespace detail
+
+/// Calls `f(info, field)` for every setting of `matcher` (any `Matcher<...>`, const or not): its
+/// segmenter's when it is `VoronoiSegmenter`, `MatcherParams`, then its clusterer's and
+/// selection's when they are the shipped ones. Policies of your own keep their settings to
+/// themselves.
+template <class M, class F>
+void for_each_parameter(M& matcher, F&& f) {
+  using Matcher = std::remove_const_t<M>;
+  if constexpr (detail::policy_has_params<decltype(Matcher::segmenter), VoronoiSegmenterParams>()) {
+    for_each_segmenter_parameter(matcher.segmenter.params, f);
+  }
+  for_each_matcher_parameter(matcher.params, f);
+  if constexpr (detail::policy_has_params<decltype(Matcher::clusterer), PoseClusterer::Params>() ||
+                detail::policy_has_params<decltype(Matcher::clusterer), AngularClusterer::Params>()) {
+    for_each_clusterer_parameter(matcher.clusterer.params, f);
+  }
+  if constexpr (detail::policy_has_params<decltype(Matcher::selection), WholeMapSelection::Params>()) {
+    for_each_selection_parameter(matcher.selection.params, f);
+  }
 }
 
 }  // namespace areamatch

@@ -1,15 +1,16 @@
 #pragma once
 /// \file parameters.hpp
-/// Every tunable setting of the segmenter (`VoronoiSegmenter::Params`) and of the matcher
-/// (`MatcherParams`) by its dotted field name, e.g. `rooms.door_width_m` or
-/// `decision.min_agreement`: one table that the program's `--set NAME=VALUE` and `areamatch
-/// parameters`, Python's `Matcher(params={...})` and `areamatch.parameters()`, and the reference
-/// in docs/parameters.md all read, so that none of them lists the settings again.
+/// Every tunable setting of a matcher — its segmenter's (`VoronoiSegmenter::Params`), its own
+/// (`MatcherParams`), its clusterer's and selection's (the shipped ones') — by a dotted name, e.g.
+/// `rooms.door_width_m`, `decision.min_agreement`, `selection.verify_candidates`: one table
+/// (parameter_table.hpp) that the program's `--set NAME=VALUE` and `areamatch parameters`,
+/// Python's `params={...}` and `areamatch.parameters()`, and the reference in docs/parameters.md
+/// all read, so that none of them lists the settings again.
 ///
 /// \code
 /// areamatch::Matcher<> matcher;
-/// areamatch::set_parameters(matcher.segmenter.params, matcher.params,
-///                           {{"rooms.door_width_m", "1.5"}, {"decision.min_agreement", "0.9"}});
+/// areamatch::set_parameters(matcher, {{"rooms.door_width_m", "1.5"}, {"decision.min_agreement", "0.9"},
+///                                     {"selection.verify_candidates", "64"}});
 /// \endcode
 ///
 /// Values are text as a person writes them: numbers, `true`/`false`, lists as `2,1.2,0.7`.
@@ -47,7 +48,7 @@ struct ParameterRow {
   std::string name;
   std::string value;    ///< the value as text (`set_parameters` reads it back exactly)
   std::string meaning;  ///< one line
-  bool segmenter = false;        ///< a `VoronoiSegmenter::Params` field (else `MatcherParams`)
+  std::string of;                ///< whose: "segmenter", "matcher", "clusterer" or "selection"
   bool shapes_map_data = false;  ///< see `ParameterInfo::shapes_map_data`
 };
 
@@ -117,76 +118,71 @@ void parse_parameter(const std::string& name, const std::string& text, std::arra
   std::copy(values.begin(), values.end(), out.begin());
 }
 
-/// Sets `name` in `params` through `for_each`; false when the table has no such name.
-template <class Params, class ForEach>
-bool set_one_parameter(Params& params, const ParameterSetting& s, ForEach for_each) {
-  bool found = false;
-  for_each(params, [&](const ParameterInfo& info, auto& field) {
-    if (found || info.name != s.name) return;
-    parse_parameter(s.name, s.value, field);
-    found = true;
-  });
-  return found;
+/// Which part of a matcher a setting belongs to, by its name.
+inline std::string parameter_owner(const std::string& name) {
+  for (const char* part : {"clusterer", "selection"}) {
+    if (name.rfind(std::string(part) + ".", 0) == 0) return part;
+  }
+  bool segmenter = false;
+  const VoronoiSegmenterParams defaults;
+  for_each_segmenter_parameter(defaults, [&](const ParameterInfo& info, const auto&) { segmenter = segmenter || info.name == name; });
+  return segmenter ? "segmenter" : "matcher";
 }
 
 }  // namespace detail
 
-/// Every row of the table with the values of `segmenter` and `matcher`, segmenter first, each in
-/// its struct's order.
-inline std::vector<ParameterRow> parameter_rows(const VoronoiSegmenterParams& segmenter, const MatcherParams& matcher) {
+/// Every setting of `matcher` (any `Matcher<...>`: `for_each_parameter`) with its value, in the
+/// table's order.
+template <class M>
+std::vector<ParameterRow> parameter_rows(const M& matcher) {
   std::vector<ParameterRow> rows;
-  auto add = [&](bool is_segmenter) {
-    return [&rows, is_segmenter](const ParameterInfo& info, const auto& field) {
-      rows.push_back({info.name, detail::parameter_text(field), info.meaning, is_segmenter, info.shapes_map_data});
-    };
-  };
-  for_each_segmenter_parameter(segmenter, add(true));
-  for_each_matcher_parameter(matcher, add(false));
+  for_each_parameter(matcher, [&rows](const ParameterInfo& info, const auto& field) {
+    rows.push_back({info.name, detail::parameter_text(field), info.meaning, detail::parameter_owner(info.name), info.shapes_map_data});
+  });
   return rows;
 }
 
-/// The table as Markdown (docs/parameters.md holds it): setting, default, what it does; a `*`
-/// marks the settings that shape a prepared map.
-inline std::string parameters_markdown(const VoronoiSegmenterParams& segmenter, const MatcherParams& matcher) {
+/// The table as Markdown (docs/parameters.md holds `Matcher<>`'s): setting, default, what it
+/// does; a `*` marks the settings that shape a prepared map.
+template <class M>
+std::string parameters_markdown(const M& matcher) {
   std::string out = "| setting | default | what it does |\n|---|---|---|\n";
-  for (const ParameterRow& r : parameter_rows(segmenter, matcher)) {
+  for (const ParameterRow& r : parameter_rows(matcher)) {
     out += "| `" + r.name + "`" + (r.shapes_map_data ? " *" : "") + " | " + r.value + " | " + r.meaning + " |\n";
   }
   return out;
 }
 
-/// Whether `name` is a segmenter setting (`VoronoiSegmenterParams`).
-inline bool parameter_is_segmenters(const std::string& name) {
-  bool found = false;
-  const VoronoiSegmenterParams defaults;
-  for_each_segmenter_parameter(defaults, [&](const ParameterInfo& info, const auto&) { found = found || info.name == name; });
-  return found;
-}
+/// Whether `name` is a setting of `VoronoiSegmenter`.
+inline bool parameter_is_segmenters(const std::string& name) { return detail::parameter_owner(name) == "segmenter"; }
 
-/// Whether the table has a setting named `name`.
-inline bool parameter_is_known(const std::string& name) {
-  const std::vector<ParameterRow> rows = parameter_rows(VoronoiSegmenterParams{}, MatcherParams{});
-  return std::any_of(rows.begin(), rows.end(), [&](const ParameterRow& row) { return row.name == name; });
-}
-
-/// Sets each named field, in order, from its text; then validates both structs. Throws
-/// `parameter_error` naming the setting for an unknown name (with the nearest known one), a value
-/// that does not read as the field's type, or a value `validate()` refuses.
-inline void set_parameters(VoronoiSegmenterParams& segmenter, MatcherParams& matcher,
-                           const std::vector<ParameterSetting>& settings) {
+/// Sets each named setting of `matcher` (any `Matcher<...>`), in order, from its text; then
+/// validates the parameters it touched. Throws `parameter_error` naming the setting for a name
+/// this matcher does not have (with the nearest one it has; a segmenter setting where the
+/// segmenter is not `VoronoiSegmenter`), a value that does not read as the field's type, or a
+/// value `validate()` refuses.
+template <class M>
+void set_parameters(M& matcher, const std::vector<ParameterSetting>& settings) {
   for (const ParameterSetting& s : settings) {
-    const bool found = detail::set_one_parameter(segmenter, s, [](auto& p, auto f) { for_each_segmenter_parameter(p, f); }) ||
-                       detail::set_one_parameter(matcher, s, [](auto& p, auto f) { for_each_matcher_parameter(p, f); });
-    if (!found) {
-      std::vector<std::string> names;
-      for (const ParameterRow& row : parameter_rows(VoronoiSegmenterParams{}, MatcherParams{})) names.push_back(row.name);
-      const std::string near = detail::nearest_name(s.name, names);
-      throw parameter_error("no parameter named '" + s.name + "'" + (near.empty() ? "" : " (did you mean " + near + "?)") +
-                            "; `areamatch parameters` lists them");
+    bool found = false;
+    for_each_parameter(matcher, [&](const ParameterInfo& info, auto& field) {
+      if (found || info.name != s.name) return;
+      detail::parse_parameter(s.name, s.value, field);
+      found = true;
+    });
+    if (found) continue;
+    if (parameter_is_segmenters(s.name)) {
+      throw parameter_error("setting " + s.name + ": only VoronoiSegmenter has it; set the parameters of your own segmenter instead");
     }
+    std::vector<std::string> names;
+    for (const ParameterRow& row : parameter_rows(matcher)) names.push_back(row.name);
+    const std::string near = detail::nearest_name(s.name, names);
+    throw parameter_error("no parameter named '" + s.name + "'" + (near.empty() ? "" : " (did you mean " + near + "?)") +
+                          "; `areamatch parameters` lists them");
   }
-  segmenter.validate();
-  matcher.validate();
+  if constexpr (detail::policy_has_params<decltype(M::segmenter), VoronoiSegmenterParams>()) matcher.segmenter.params.validate();
+  matcher.params.validate();
+  if constexpr (detail::policy_has_params<decltype(M::selection), WholeMapSelection::Params>()) matcher.selection.params.validate();
 }
 
 /// The first setting that shapes a prepared map's data (`ParameterInfo::shapes_map_data`) and

@@ -182,12 +182,16 @@ am::MapPairOptions pair_options(std::optional<double> door_width, std::optional<
   o.dest_door_width_m = door_width ? door_width : dest_door_width;
   o.allow_reflection = allow_reflection;
   o.estimate_scale = estimate_scale;
-  o.k = k;
-  o.min_score = min_score;
-  o.min_agreement = min_agreement;
-  o.gate_max_lower_walls = gate_max_lower_walls;
-  o.gate_min_overlap_m2 = gate_min_overlap_m2;
-  o.min_p_correct = min_p_correct;
+  // The keywords that stand for settings of the table (as the program's --k, --min-agreement, ...).
+  auto add = [&o](const char* name, const std::optional<double>& value) {
+    if (value) o.settings.push_back({name, am::detail::format_double(*value)});
+  };
+  add("k", k ? std::optional<double>(static_cast<double>(*k)) : std::nullopt);
+  add("decision.min_score", min_score);
+  add("decision.min_agreement", min_agreement);
+  add("decision.gate_max_lower_walls", gate_max_lower_walls);
+  add("decision.gate_min_overlap_m2", gate_min_overlap_m2);
+  add("decision.min_p_correct", min_p_correct);
   o.paper = paper;
   o.threads = threads;
   return o;
@@ -655,7 +659,7 @@ void bind_match(py::module_& m) {
         auto options = pair_options(door_width, source_door_width, dest_door_width, allow_reflection, estimate_scale, k,
                                      min_score, min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct,
                                      paper, threads);
-        options.settings = settings_from(params);
+        for (auto& s : settings_from(params)) options.settings.push_back(std::move(s));
         const am::ProgressCallback report = python_progress(progress);
         return MatchRun{am::detail::with_default_matcher(options,
                                                          [&](auto matcher) {
@@ -678,24 +682,22 @@ void bind_match(py::module_& m) {
 
 }
 
-/// The settings table (parameters.hpp) with typed values.
+/// The settings table (parameters.hpp) with typed values: the default matcher's, or the paper's.
 py::list parameter_list(bool paper) {
   py::list out;
-  auto add = [&out](const char* of) {
-    return [&out, of](const am::ParameterInfo& info, const auto& field) {
-      py::dict row;
-      row["name"] = info.name;
-      row["value"] = py::cast(field);
-      row["meaning"] = info.meaning;
-      row["of"] = of;
-      row["shapes_map_data"] = info.shapes_map_data;
-      out.append(row);
-    };
+  auto add = [&out](const am::ParameterInfo& info, const auto& field) {
+    py::dict row;
+    row["name"] = info.name;
+    row["value"] = py::cast(field);
+    row["meaning"] = info.meaning;
+    row["of"] = am::detail::parameter_owner(info.name);
+    row["shapes_map_data"] = info.shapes_map_data;
+    out.append(row);
   };
-  const am::VoronoiSegmenterParams segmenter;
-  const am::MatcherParams matcher = paper ? am::MatcherParams::paper() : am::MatcherParams{};
-  am::for_each_segmenter_parameter(segmenter, add("segmenter"));
-  am::for_each_matcher_parameter(matcher, add("matcher"));
+  const am::PaperMatcher paper_matcher;
+  const DefaultMatcher default_matcher;
+  if (paper) am::for_each_parameter(paper_matcher, add);
+  else am::for_each_parameter(default_matcher, add);
   return out;
 }
 
@@ -712,7 +714,7 @@ void bind_matcher(py::module_& m) {
              PyMatcher p;
              p.options = pair_options(door_width, std::nullopt, std::nullopt, allow_reflection, false, k, min_score,
                                       min_agreement, gate_max_lower_walls, gate_min_overlap_m2, min_p_correct, false, threads);
-             p.options.settings = settings_from(params);
+             for (auto& s : settings_from(params)) p.options.settings.push_back(std::move(s));
              p.matcher = am::detail::configured_matcher(DefaultMatcher{}, p.options);
              p.matcher.segmenter = am::detail::segmenter_with_door(p.matcher.segmenter, door_width);
              return p;

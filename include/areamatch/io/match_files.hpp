@@ -40,24 +40,15 @@ struct MapPairOptions {
   /// Also try the source's mirror image. Unset: the matcher's own (`MatcherParams::allow_reflection`,
   /// false for the overloads without a matcher).
   std::optional<bool> allow_reflection;
-  std::optional<std::size_t> k;               ///< mutual nearest neighbours per area
-  std::optional<double> min_score;            ///< reject below this whole-map score
-  std::optional<double> min_agreement;        ///< reject below this agreement (MatchEvidence)
-  /// the agreement accepts alone only where the lower wall agreement is at most this
-  /// (`DecisionParams::gate_max_lower_walls`; above 1: wherever)
-  std::optional<double> gate_max_lower_walls;
-  /// the agreement accepts alone only on at least this much shared free space, m²
-  /// (`DecisionParams::gate_min_overlap_m2`; 0: whatever the overlap)
-  std::optional<double> gate_min_overlap_m2;
-  std::optional<double> min_p_correct;        ///< reject below this p_correct (match/decision.hpp)
   bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
   /// Load and segment the two maps side by side on this many threads (and build their match data
   /// so: `MatcherParams::threads`); the same result for any count. Unset: the matcher's own (1 for
   /// the overloads without a matcher).
   std::optional<unsigned> threads;
-  /// Any settings of the table (parameters.hpp: `{"refinement.gates_m", "2,1,0.5"}`), applied
-  /// in order after the fields above, except the door widths, which apply last. A segmenter
-  /// setting needs `VoronoiSegmenter`.
+  /// Any settings of the table (parameters.hpp), in order, e.g. `{"k", "5"}`,
+  /// `{"decision.min_agreement", "0.9"}`, `{"refinement.gates_m", "2,1,0.5"}`: a patch of the
+  /// matcher's parameters, applied after `allow_reflection` and `threads`; the door widths apply
+  /// last. A segmenter setting needs `VoronoiSegmenter`.
   std::vector<ParameterSetting> settings;
 };
 
@@ -101,31 +92,15 @@ inline void apply_match_options(MatcherParams& params, const MapPairOptions& opt
   // defaults of these two until 2026-12-05).
   if (options.allow_reflection) params.allow_reflection = *options.allow_reflection;
   if (options.threads) params.threads = *options.threads;
-  if (options.k) params.k = *options.k;
-  if (options.min_score) params.decision.min_score = *options.min_score;
-  if (options.min_agreement) params.decision.min_agreement = *options.min_agreement;
-  if (options.gate_max_lower_walls) params.decision.gate_max_lower_walls = *options.gate_max_lower_walls;
-  if (options.gate_min_overlap_m2) params.decision.gate_min_overlap_m2 = *options.gate_min_overlap_m2;
-  if (options.min_p_correct) params.decision.min_p_correct = *options.min_p_correct;
 }
 
-/// `matcher` with what `options` asks of its parameters, then `options.settings` (a segmenter
-/// setting only where the segmenter is `VoronoiSegmenter`; else refused rather than ignored).
+/// `matcher` with what `options` asks of its parameters, then `options.settings`
+/// (`set_parameters`: a segmenter setting only where the segmenter is `VoronoiSegmenter`).
 template <class M>
 M configured_matcher(const M& matcher, const MapPairOptions& options) {
   M out = matcher;
   apply_match_options(out.params, options);
-  if constexpr (std::is_same_v<std::decay_t<decltype(out.segmenter)>, VoronoiSegmenter>) {
-    set_parameters(out.segmenter.params, out.params, options.settings);
-  } else {
-    for (const ParameterSetting& s : options.settings) {
-      if (parameter_is_segmenters(s.name)) {
-        throw parameter_error("setting " + s.name + ": only VoronoiSegmenter has it; set the parameters of your own segmenter instead");
-      }
-    }
-    VoronoiSegmenterParams none;  // holds no setting: each was checked above
-    set_parameters(none, out.params, options.settings);
-  }
+  set_parameters(out, options.settings);
   return out;
 }
 

@@ -28,7 +28,7 @@ class BoundaryLookup {
   /// A lookup over `points` on cells of `cell_m`, reaching `margin_m` beyond their bounding box;
   /// with `normal_radius_m` > 0, each point's normal from its neighbours within that radius.
   BoundaryLookup(std::vector<Eigen::Vector2d> points, double cell_m, double margin_m, double normal_radius_m = 0.0)
-      : cell_m_(cell_m), points_(std::move(points)) {
+      : cell_m_(cell_m), reach_m_(margin_m), points_(std::move(points)) {
     if (points_.empty()) return;
     Eigen::Vector2d lo = points_.front(), hi = points_.front();
     for (const auto& p : points_) {
@@ -43,6 +43,8 @@ class BoundaryLookup {
   }
 
   bool empty() const { return points_.empty(); }
+  /// How far beyond its points it answers: `nearest` finds every point within this distance.
+  double reach_m() const { return reach_m_; }
   const std::vector<Eigen::Vector2d>& points() const { return points_; }
   bool has_normals() const { return !normals_.empty(); }
   /// The unit normal at a point returned by `nearest` (lookups built with normals only); its
@@ -237,6 +239,7 @@ class BoundaryLookup {
   }
 
   double cell_m_ = 0.1;
+  double reach_m_ = 0.0;
   Eigen::Vector2d origin_ = Eigen::Vector2d::Zero();
   int width_ = 0;
   int height_ = 0;

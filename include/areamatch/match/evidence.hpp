@@ -28,8 +28,6 @@
 
 namespace areamatch {
 
-namespace detail {
-
 /// Both maps' free-space edges: the source's sparse points to move (ICP, scores), both maps'
 /// sparse walls (edge points without frontiers, `without_frontiers`) and dense lookups to land on.
 /// Views of what each map holds (built once per map, `Matcher::prepare`).
@@ -40,9 +38,11 @@ struct MapEdges {
   const std::vector<Eigen::Vector2d>& dest_walls;
   const BoundaryLookup& source_lookup;
   const BoundaryLookup& dest_lookup;
-  const OccupiedWalls& source_occupied;  ///< the occupied cells (walls against walls)
-  const OccupiedWalls& dest_occupied;
+  const detail::OccupiedWalls& source_occupied;  ///< the occupied cells (walls against walls; internal)
+  const detail::OccupiedWalls& dest_occupied;
 };
+
+namespace detail {
 
 /// Whether a world point is in, or within one raster cell of, a labelled cell of `raster`.
 inline bool near_labelled(const AreaRaster& raster, const Eigen::Vector2d& world) {
@@ -80,7 +80,7 @@ inline std::vector<Eigen::Vector2d> without_frontiers(const OccupancyGrid& grid,
 /// `MatchEvidence::forward_wall_agreement` and `reverse_wall_agreement` alone: each map's walls
 /// near the other's free space that lie on the other's free-space edge.
 inline std::pair<double, double> overlap_wall_agreements(const AreaRaster& source_raster, const AreaRaster& dest_raster,
-                                                         const detail::MapEdges& edges, const Similarity2& T_dest_source,
+                                                         const MapEdges& edges, const Similarity2& T_dest_source,
                                                          double wall_inlier_distance_m) {
   auto shared_walls = [&](const std::vector<Eigen::Vector2d>& walls, const AreaRaster& other, const Similarity2& T,
                           const BoundaryLookup& other_edge) {
@@ -97,7 +97,7 @@ inline std::pair<double, double> overlap_wall_agreements(const AreaRaster& sourc
 /// The measures of `MatchEvidence` for T_dest_source, from both maps' edges (world metres) and
 /// area rasters of one cell size.
 inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& dest, const AreaRaster& source_raster,
-                                      const AreaRaster& dest_raster, const detail::MapEdges& edges,
+                                      const AreaRaster& dest_raster, const MapEdges& edges,
                                       const Similarity2& T_dest_source, double wall_inlier_distance_m,
                                       double passage_distance_m, double iou_weight) {
   MatchEvidence e;

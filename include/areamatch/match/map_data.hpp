@@ -47,12 +47,14 @@ struct MapView {
   const MapData<Descriptors>* data;
 };
 
-/// The lookups reach this far beyond the edges: every distance they are asked about.
+/// The lookups reach this far beyond the edges: every distance the matcher's own stages ask them
+/// about (the refinement's and the scale sweep's gates, `wall_inlier_distance_m`). A selection
+/// asks within it (`BoundaryLookup::reach_m`).
 inline double lookup_margin(const MatcherParams& params) {
   const auto& gates = params.refinement.gates_m;
   const auto& sweep_gates = params.scale.sweep_gates_m;
   return std::max({*std::max_element(gates.begin(), gates.end()), *std::max_element(sweep_gates.begin(), sweep_gates.end()),
-                   params.wall_inlier_distance_m, params.candidate_wall_distance_m});
+                   params.wall_inlier_distance_m});
 }
 
 /// The dense lookup over a map's free-space edge cells (points every half lookup cell) reaching

@@ -38,26 +38,14 @@ struct MatcherParams {
   /// functions are called from several threads at once (the built-in ones are pure).
   unsigned threads = 1;
 
-  // Whole-map verification (`WholeMapSelection`, match/selection.hpp).
+  // Shared by the stages after the clusters (the selection's own settings are its policy's:
+  // `WholeMapSelection::Params`, match/selection.hpp).
   double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
   double fine_cell_m = 0.25;            ///< raster cell for the finalists' IoU (0.1 measured no better)
-  std::size_t members_per_cluster = 1;  ///< best members of each cluster that get verified
-  std::size_t sparse_samples = 300;     ///< source wall points of the first, cheap ranking pass
-  std::size_t verify_candidates = 48;   ///< candidates ranked again on all source wall points
-  /// Before ICP, candidates are ranked by the share of the source's walls within this distance of
-  /// the destination's free-space edge. Loose, because an unrefined hypothesis is anchored at one
-  /// pair's segment midpoints and can be off by a few decimetres. Walls, not free-space IoU: a
-  /// partial map lies inside the other's free space under many wrong transforms (IoU saturates),
-  /// so IoU let the right rotation fall out before ICP on hand-held scans (docs/matching.md).
-  double candidate_wall_distance_m = 0.5;
-  std::size_t refine_candidates = 8;    ///< candidates refined and scored on the fine raster
   bool refine = true;
   RefineParams refinement;
-  bool refine_on_free_edges = true;     ///< ICP on the maps' free-space edges (else the areas' edges)
-  /// The finalists' score: (1 − w) · free-space IoU + w · share of the source's free-space edge
-  /// within `wall_inlier_distance_m` of the destination's. IoU alone lets a map that extends past
-  /// the other slide along a corridor; edges pin room dividers.
-  double wall_score_weight = 1.0;
+  /// A free-space edge point within this distance of the other map's edge is on it: in the
+  /// finalists' score and the evidence's wall agreements.
   double wall_inlier_distance_m = 0.3;
   /// Walls against walls (`MatchEvidence::occupied_wall_agreement`): each map's occupied cells
   /// are thinned to one per `occupied_point_spacing_m` square; those landing within
@@ -130,17 +118,12 @@ struct MatcherParams {
     hypotheses.validate();
     detail::require_positive(coarse_cell_m, "MatcherParams::coarse_cell_m");
     detail::require_positive(fine_cell_m, "MatcherParams::fine_cell_m");
-    detail::require_positive(candidate_wall_distance_m, "MatcherParams::candidate_wall_distance_m");
     detail::require_positive(occupied_point_spacing_m, "MatcherParams::occupied_point_spacing_m");
     detail::require_positive(occupied_wall_distance_m, "MatcherParams::occupied_wall_distance_m");
     if (!(occupied_wall_context_m >= occupied_wall_distance_m && std::isfinite(occupied_wall_context_m))) {
       throw parameter_error("MatcherParams::occupied_wall_context_m must be finite and at least occupied_wall_distance_m");
     }
-    if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1 ||
-        turn_check_points < 1) {
-      throw parameter_error("MatcherParams: members_per_cluster, sparse_samples, verify_candidates, "
-                            "refine_candidates and turn_check_points must be >= 1");
-    }
+    if (turn_check_points < 1) throw parameter_error("MatcherParams::turn_check_points must be >= 1");
     refinement.validate();
     detail::require_positive(different_rotation_rad, "MatcherParams::different_rotation_rad");
     detail::require_positive(different_translation_m, "MatcherParams::different_translation_m");

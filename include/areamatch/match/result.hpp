@@ -138,7 +138,7 @@ struct MatchResult {
   Similarity2 T_dest_source;       ///< source world → destination world (metres)
   PixelTransform pixel_transform = PixelTransform::Zero();  ///< source pixel → destination pixel
   /// Whole-map score of the result: (1 − w) · IoU of the two maps' area-covered free space + w ·
-  /// share of the source's free-space edge on the destination's, w = `wall_score_weight` (1 by
+  /// share of the source's free-space edge on the destination's, w = `WholeMapSelection::Params::wall_score_weight` (1 by
   /// default: the edge share); the paper preset reports its Σ OP over the mutual pairs.
   double score = 0.0;
   /// Whether the source's scale was estimated (`MatcherParams::estimate_scale`); the estimate is

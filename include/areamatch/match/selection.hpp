@@ -26,7 +26,9 @@
 /// largest cluster's member with the highest Σ OP.
 
 #include "../area_graph.hpp"
+#include "../detail/format.hpp"
 #include "../detail/parallel.hpp"
+#include "../error.hpp"
 #include "../transform.hpp"
 #include "clusterer.hpp"
 #include "costs.hpp"
@@ -56,7 +58,10 @@ struct ScoredTransform {
   double score = 0.0;
 };
 
-/// What a selection may read: the matcher's parameters and what it built for the pair.
+/// What a selection may read: the matcher's parameters — those its stages share: `threads`,
+/// `allow_reflection`, `estimate_scale`, `refine` and `refinement`, what counts as a different
+/// answer, `wall_inlier_distance_m` — and what the matcher built for the pair. A selection's own
+/// settings are its own (`WholeMapSelection::Params`).
 struct SelectionInputs {
   const MatcherParams& params;
   const HypothesisInputs& maps;               ///< both Area Graphs, coarse rasters, wall directions
@@ -65,7 +70,7 @@ struct SelectionInputs {
   const std::vector<Cluster>& clusters;       ///< best first, each best member first
   const AreaRaster& source_fine;              ///< area-covered free space on fine cells
   const AreaRaster& dest_fine;
-  const detail::MapEdges& edges;              ///< both maps' free-space edges and lookups
+  const MapEdges& edges;                      ///< both maps' free-space edges and lookups (`reach_m` away)
 };
 
 /// What a selection returns.
@@ -141,11 +146,46 @@ inline constexpr bool is_selection_v = detail::is_selection<S>::value;
 
 /// Ours: the best members of every cluster, ranked by how much of the source's walls land near
 /// the destination's (sparse, then all wall points); the best few refined by ICP and scored.
-/// The answer is the best of those, whatever cluster it came from. Its budgets and distances are
-/// `MatcherParams`' whole-map verification parameters.
+/// The answer is the best of those, whatever cluster it came from.
 struct WholeMapSelection {
+  /// Its budgets and distances (the matcher's own, shared with other stages: `SelectionInputs`).
+  struct Params {
+    std::size_t members_per_cluster = 1;  ///< best members of each cluster that get verified
+    std::size_t sparse_samples = 300;     ///< source wall points of the first, cheap ranking pass
+    std::size_t verify_candidates = 48;   ///< candidates ranked again on all source wall points
+    /// Before ICP, candidates are ranked by the share of the source's walls within this distance
+    /// of the destination's free-space edge: loose, as an unrefined hypothesis can be decimetres
+    /// off; walls, as free-space IoU saturates for a partial map (docs/matching.md). At most the
+    /// lookups' reach (the largest ICP gate, 2 m by default).
+    double candidate_wall_distance_m = 0.5;
+    std::size_t refine_candidates = 8;    ///< candidates refined by ICP and scored on the fine raster
+    bool refine_on_free_edges = true;     ///< ICP on the maps' free-space edges (else the areas' edges)
+    /// The finalists' score: (1 − w) · free-space IoU + w · share of the source's free-space edge
+    /// on the destination's (`MatcherParams::wall_inlier_distance_m`): edges pin room dividers.
+    double wall_score_weight = 1.0;
+
+    void validate() const {
+      detail::require_positive(candidate_wall_distance_m, "WholeMapSelection::Params::candidate_wall_distance_m");
+      if (members_per_cluster < 1 || sparse_samples < 1 || verify_candidates < 1 || refine_candidates < 1) {
+        throw parameter_error("WholeMapSelection::Params: members_per_cluster, sparse_samples, verify_candidates and "
+                              "refine_candidates must be >= 1");
+      }
+      if (!(wall_score_weight >= 0.0 && wall_score_weight <= 1.0)) {
+        throw parameter_error("WholeMapSelection::Params::wall_score_weight must be in [0, 1]");
+      }
+    }
+  };
+  Params params;
+
   Selected select(const SelectionInputs& in, MatchStatistics& statistics) const {
-    const MatcherParams& params = in.params;
+    params.validate();
+    const MatcherParams& shared = in.params;
+    const double reach = in.edges.dest_lookup.reach_m();
+    if (!in.edges.dest_lookup.empty() && params.candidate_wall_distance_m > reach) {
+      throw parameter_error("WholeMapSelection::Params::candidate_wall_distance_m (" + detail::format_double(params.candidate_wall_distance_m) +
+                            " m) reaches beyond the edge lookups (" + detail::format_double(reach) +
+                            " m: the largest of refinement.gates_m, scale.sweep_gates_m and wall_inlier_distance_m)");
+    }
     std::vector<ScoredTransform> candidates;
     for (const Cluster& cluster : in.clusters) {
       for (std::size_t m = 0; m < std::min(params.members_per_cluster, cluster.members.size()); ++m) {
@@ -156,15 +196,15 @@ struct WholeMapSelection {
     // Unrefined candidates are ranked by the share of the source's walls near the destination's
     // edge (frontiers left out: a partial map's frontier is not a wall of the other map), first
     // on a few hundred wall points, then on all of them.
-    const detail::MapEdges& edges = in.edges;
+    const MapEdges& edges = in.edges;
     const std::vector<Eigen::Vector2d>& walls = edges.source_walls.empty() ? edges.source_points : edges.source_walls;
     const std::vector<Eigen::Vector2d> sparse_walls = detail::evenly_thinned(walls, params.sparse_samples);
     auto score_on = [&](const std::vector<Eigen::Vector2d>& points) {
-      detail::for_each_index(candidates.size(), params.threads, [&](std::size_t i) {
+      detail::for_each_index(candidates.size(), shared.threads, [&](std::size_t i) {
         candidates[i].score = boundary_inlier_fraction(points, edges.dest_lookup, candidates[i].T, params.candidate_wall_distance_m);
       });
     };
-    score_sparse(candidates, sparse_walls, edges.dest_lookup, params);
+    score_sparse(candidates, sparse_walls, edges.dest_lookup, params, shared.threads);
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
     if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
     score_on(walls);
@@ -175,12 +215,12 @@ struct WholeMapSelection {
     // different transform, so that the margins compare refined with refined.
     Selected out;
     out.comparable_scores = true;
-    out.refined = params.refine;
+    out.refined = shared.refine;
     std::vector<ScoredTransform>& finalists = out.finalists;
     const Eigen::Vector2d centroid = detail::centroid_of(*in.maps.source_raster);
     auto add_finalist = [&](const ScoredTransform& c) {
       for (const auto& f : finalists) {
-        if (!detail::different(f.T, c.T, centroid, params)) return;
+        if (!detail::different(f.T, c.T, centroid, shared)) return;
       }
       finalists.push_back(c);
     };
@@ -192,7 +232,7 @@ struct WholeMapSelection {
       if (c.T.reflected != candidates.front().T.reflected) { add_finalist(c); break; }
     }
 
-    refine_and_score(in, finalists, statistics);
+    refine_and_score(in, params, finalists, statistics);
     std::stable_sort(finalists.begin(), finalists.end(), by_score);
     return out;
   }
@@ -204,17 +244,17 @@ struct WholeMapSelection {
   /// score is then below theirs, and it is cut as before): the kept candidates, their scores and
   /// their order are those of counting every point.
   static void score_sparse(std::vector<ScoredTransform>& candidates, const std::vector<Eigen::Vector2d>& points,
-                           const BoundaryLookup& dest, const MatcherParams& params) {
+                           const BoundaryLookup& dest, const Params& params, unsigned threads) {
     if (points.empty() || dest.empty()) {
       for (auto& c : candidates) c.score = 0.0;
       return;
     }
     const std::size_t keep = params.verify_candidates, n = points.size();
-    const std::size_t blocks = std::min<std::size_t>(detail::resolved_threads(params.threads), std::max<std::size_t>(1, candidates.size()));
+    const std::size_t blocks = std::min<std::size_t>(detail::resolved_threads(threads), std::max<std::size_t>(1, candidates.size()));
     const std::size_t per_block = (candidates.size() + blocks - 1) / blocks;
     // One block of consecutive candidates per thread, each with its own best-so-far: how many
     // points a cut candidate was counted on depends on the blocks, what is kept does not.
-    detail::for_each_index(blocks, params.threads, [&](std::size_t b) {
+    detail::for_each_index(blocks, threads, [&](std::size_t b) {
       std::priority_queue<std::size_t, std::vector<std::size_t>, std::greater<>> best;  // the `keep` highest counts
       for (std::size_t i = b * per_block; i < std::min(candidates.size(), (b + 1) * per_block); ++i) {
         const std::size_t enough = keep == 0 || best.size() < keep ? 0 : best.top();
@@ -229,37 +269,37 @@ struct WholeMapSelection {
 
   /// Refines the finalists by ICP and scores them: a blend of the fine free-space IoU and the
   /// share of the source's free-space edge that lies on the destination's.
-  static void refine_and_score(const SelectionInputs& in, std::vector<ScoredTransform>& finalists,
+  static void refine_and_score(const SelectionInputs& in, const Params& params, std::vector<ScoredTransform>& finalists,
                                MatchStatistics& statistics) {
-    const MatcherParams& params = in.params;
+    const MatcherParams& shared = in.params;
     const std::vector<Eigen::Vector2d>& edge = in.edges.source_points;
     const BoundaryLookup& dest_edge = in.edges.dest_lookup;
-    if (params.refine) {
-      const RefineParams refinement = detail::finalist_refinement(params);
+    if (shared.refine) {
+      const RefineParams refinement = detail::finalist_refinement(shared);
       const std::vector<Eigen::Vector2d>* points = &edge;
       const std::vector<Eigen::Vector2d>* sides = &in.edges.source_sides;
       const BoundaryLookup* lookup = &dest_edge;
       std::vector<Eigen::Vector2d> area_points;
       BoundaryLookup area_lookup;
       if (!params.refine_on_free_edges) {
-        area_points = detail::area_boundary_points(*in.maps.source, params.refinement.point_spacing_m,
-                                                   static_cast<std::size_t>(params.refinement.max_points));
-        area_lookup = BoundaryLookup(detail::area_boundary_points(*in.maps.dest, 0.5 * params.refinement.lookup_cell_m),
-                                     params.refinement.lookup_cell_m, params.refinement.gates_m.front(),
-                                     params.refinement.point_to_line ? params.refinement.normal_radius_m : 0.0);
+        area_points = detail::area_boundary_points(*in.maps.source, shared.refinement.point_spacing_m,
+                                                   static_cast<std::size_t>(shared.refinement.max_points));
+        area_lookup = BoundaryLookup(detail::area_boundary_points(*in.maps.dest, 0.5 * shared.refinement.lookup_cell_m),
+                                     shared.refinement.lookup_cell_m, shared.refinement.gates_m.front(),
+                                     shared.refinement.point_to_line ? shared.refinement.normal_radius_m : 0.0);
         points = &area_points;
         sides = nullptr;
         lookup = &area_lookup;
       }
-      detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
+      detail::for_each_index(finalists.size(), shared.threads, [&](std::size_t i) {
         finalists[i].T = refine_icp(*points, *lookup, finalists[i].T, refinement, sides);
       });
       statistics.refined = finalists.size();
     }
-    detail::for_each_index(finalists.size(), params.threads, [&](std::size_t i) {
+    detail::for_each_index(finalists.size(), shared.threads, [&](std::size_t i) {
       auto& f = finalists[i];
       const double iou = free_space_iou(in.source_fine, in.dest_fine, f.T);
-      const double walls = boundary_inlier_fraction(edge, dest_edge, f.T, params.wall_inlier_distance_m);
+      const double walls = boundary_inlier_fraction(edge, dest_edge, f.T, shared.wall_inlier_distance_m);
       f.score = (1.0 - params.wall_score_weight) * iou + params.wall_score_weight * walls;
     });
   }
