@@ -91,7 +91,7 @@ void parse_parameter(const std::string& name, const std::string& text, T& out) {
   const double low = std::is_signed_v<T> ? static_cast<double>(std::numeric_limits<T>::min()) : 0.0;
   if (v != std::floor(v) || v < low || v > 2147483647.0) {
     throw parameter_error("parameter " + name + " must be a whole number" + (std::is_signed_v<T> ? "" : " >= 0") +
-                          ", got '" + text + "'");
+                          " (at most 2147483647), got '" + text + "'");
   }
   out = static_cast<T>(v);
 }
@@ -160,12 +160,13 @@ inline bool parameter_is_segmenters(const std::string& name) { return detail::pa
 /// validates the parameters it touched. Throws `parameter_error` naming the setting for a name
 /// this matcher does not have (with the nearest one it has; a segmenter setting where the
 /// segmenter is not `VoronoiSegmenter`), a value that does not read as the field's type, or a
-/// value `validate()` refuses.
+/// value `validate()` refuses; `matcher` is then left as it was.
 template <class M>
 void set_parameters(M& matcher, const std::vector<ParameterSetting>& settings) {
+  M changed = matcher;
   for (const ParameterSetting& s : settings) {
     bool found = false;
-    for_each_parameter(matcher, [&](const ParameterInfo& info, auto& field) {
+    for_each_parameter(changed, [&](const ParameterInfo& info, auto& field) {
       if (found || info.name != s.name) return;
       detail::parse_parameter(s.name, s.value, field);
       found = true;
@@ -175,14 +176,15 @@ void set_parameters(M& matcher, const std::vector<ParameterSetting>& settings) {
       throw parameter_error("setting " + s.name + ": only VoronoiSegmenter has it; set the parameters of your own segmenter instead");
     }
     std::vector<std::string> names;
-    for (const ParameterRow& row : parameter_rows(matcher)) names.push_back(row.name);
+    for (const ParameterRow& row : parameter_rows(changed)) names.push_back(row.name);
     const std::string near = detail::nearest_name(s.name, names);
     throw parameter_error("no parameter named '" + s.name + "'" + (near.empty() ? "" : " (did you mean " + near + "?)") +
                           "; `areamatch parameters` lists them");
   }
-  if constexpr (detail::policy_has_params<decltype(M::segmenter), VoronoiSegmenterParams>()) matcher.segmenter.params.validate();
-  matcher.params.validate();
-  if constexpr (detail::policy_has_params<decltype(M::selection), WholeMapSelection::Params>()) matcher.selection.params.validate();
+  if constexpr (detail::policy_has_params<decltype(M::segmenter), VoronoiSegmenterParams>()) changed.segmenter.params.validate();
+  changed.params.validate();
+  if constexpr (detail::policy_has_params<decltype(M::selection), WholeMapSelection::Params>()) changed.selection.params.validate();
+  matcher = std::move(changed);
 }
 
 /// The first setting that shapes a prepared map's data (`ParameterInfo::shapes_map_data`) and

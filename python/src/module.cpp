@@ -246,6 +246,7 @@ std::vector<am::ParameterSetting> settings_from(const py::object& params) {
     if (py::isinstance<py::int_>(v)) return py::str(v).cast<std::string>();
     if (py::isinstance<py::float_>(v)) return am::detail::format_double(v.cast<double>());
     if (py::isinstance<py::str>(v)) return v.cast<std::string>();
+    if (py::hasattr(v, "__float__")) return am::detail::format_double(v.cast<double>());  // numpy's scalars
     throw am::parameter_error("params['" + name + "']: a bool, a number, a list of numbers or text, got " +
                               py::str(py::type::of(v)).cast<std::string>());
   };

@@ -148,7 +148,7 @@ inline constexpr bool is_selection_v = detail::is_selection<S>::value;
 /// the destination's (sparse, then all wall points); the best few refined by ICP and scored.
 /// The answer is the best of those, whatever cluster it came from.
 struct WholeMapSelection {
-  /// Its budgets and distances (the matcher's own, shared with other stages: `SelectionInputs`).
+  /// Its own budgets and distances (what it shares with other stages: `SelectionInputs::params`).
   struct Params {
     std::size_t members_per_cluster = 1;  ///< best members of each cluster that get verified
     std::size_t sparse_samples = 300;     ///< source wall points of the first, cheap ranking pass
@@ -160,8 +160,8 @@ struct WholeMapSelection {
     double candidate_wall_distance_m = 0.5;
     std::size_t refine_candidates = 8;    ///< candidates refined by ICP and scored on the fine raster
     bool refine_on_free_edges = true;     ///< ICP on the maps' free-space edges (else the areas' edges)
-    /// The finalists' score: (1 − w) · free-space IoU + w · share of the source's free-space edge
-    /// on the destination's (`MatcherParams::wall_inlier_distance_m`): edges pin room dividers.
+    /// Finalists' score: (1 − w) · free-space IoU + w · share of the source's free-space edge on
+    /// the destination's (within `MatcherParams::wall_inlier_distance_m`).
     double wall_score_weight = 1.0;
 
     void validate() const {
