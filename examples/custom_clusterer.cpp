@@ -1,6 +1,6 @@
 // A user-written clusterer in the Matcher: group hypotheses into 10-degree rotation bins.
 // A clusterer policy is one const member function returning clusters best first (see
-// <areamatch/match/clusterer.hpp>); it must be deterministic and keep the two sides of the
+// <areamatch/match/proposal/clusterer.hpp>); it must be deterministic and keep the two sides of the
 // mirror apart.
 //   build/examples/custom_clusterer
 #include <areamatch/areamatch.hpp>

@@ -1,6 +1,6 @@
 // A user-written feature in the Matcher: the number of passages of an area, added to the
 // paper's three features with its own weight. A feature policy is a small struct: a descriptor
-// type, `describe` and `cost` (see <areamatch/match/features.hpp>).
+// type, `describe` and `cost` (see <areamatch/match/proposal/features.hpp>).
 //   build/examples/custom_feature
 #include <areamatch/areamatch.hpp>
 #include <areamatch/synthetic.hpp>

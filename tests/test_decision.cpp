@@ -1,4 +1,4 @@
-// The accept/reject decision (match/decision.hpp): the logistic fit itself, and a rule fitted
+// The accept/reject decision (match/decision/decision.hpp): the logistic fit itself, and a rule fitted
 // without one generated building judging that building — the way its coefficients are chosen
 // (leave-one-building-out, docs/evaluation.md), so a rule that only works on the buildings it
 // was fitted on fails here.

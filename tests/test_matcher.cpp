@@ -1003,7 +1003,7 @@ TEST_CASE("the raster overlap estimates the exact polygon overlap (the paper's O
 }
 
 namespace {
-/// The smallest selection policy (match/selection.hpp's example): the best cluster's best member.
+/// The smallest selection policy (match/verification/selection.hpp's example): the best cluster's best member.
 struct FirstClusterSelection {
   Selected select(const SelectionInputs& in, MatchStatistics&) const {
     Selected out;

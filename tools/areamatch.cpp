@@ -1458,7 +1458,7 @@ int run_eval(const std::vector<std::string>& tokens) {
 
 const std::string kCalibrateHelp = with_decision_defaults(
     "usage: areamatch calibrate RESULTS.csv [RESULTS.csv ...] [options]\n"
-    "Fits the accept/reject decision (p_correct, include/areamatch/match/decision.hpp) on the rows of\n"
+    "Fits the accept/reject decision (p_correct, include/areamatch/match/decision/decision.hpp) on the rows of\n"
     "'areamatch eval --out DIR' runs (DIR/results.csv; run them with --cross-buildings for pairs that\n"
     "must be rejected) and measures it by leave-one-building-out cross-validation: each building's\n"
     "pairs are judged by a model fitted without any pair that touches that building (maps joined by a\n"

@@ -1,28 +1,32 @@
 #pragma once
 /// \file matcher.hpp
 /// `Matcher<Segmenter, Features, Weights, Clusterer, Selection>`: two occupancy grids → the
-/// transform between them, through the stages of `match/`:
+/// transform between them, through the stages of `match/`, grouped by what they do:
 ///
 ///   inputs.hpp        what is checked of the maps given (each graph from its grid, the area limit)
 ///   map_data.hpp      what each map gives alone (descriptors, rasters, edges, lookups)
-///   features.hpp      per-area descriptors and costs (area size, passage distances, hull diameter)
-///   costs.hpp         weighted cost matrix, mutual k-nearest-neighbour area pairs
 ///   raster.hpp        area-covered free space on coarse cells, for fast overlaps
-///   hypotheses.hpp    a transform per pair and segment match, filtered by the pair's overlap
-///   clusterer.hpp     angular (paper) or pose (default) clustering
-///   selection.hpp     the answer among the clusters: whole-map verification (default) or the paper's
-///   edges.hpp         the edges of free space and of the areas, as cells and thinned points
-///   boundary_lookup.hpp  nearest boundary point per cell (and per facing direction), normals
-///   refine.hpp        trimmed ICP on the free-space boundaries
+///   proposal/         candidate transforms from area pairs
+///     features.hpp    per-area descriptors and costs (paper_features.hpp: area size, passage
+///                     distances, hull diameter)
+///     costs.hpp       weighted cost matrix, mutual k-nearest-neighbour area pairs
+///     hypotheses.hpp  a transform per pair and segment match, filtered by the pair's overlap
+///     clusterer.hpp   angular (paper) or pose (default) clustering
+///   verification/     the answer checked on the whole maps
+///     selection.hpp   the answer among the clusters: whole-map verification (default) or the paper's
+///     edges.hpp       the edges of free space and of the areas, as cells and thinned points
+///     boundary_lookup.hpp  nearest boundary point per cell (and per facing direction), normals
+///     refine.hpp      trimmed ICP on the free-space boundaries
+///     evidence.hpp    how much the maps agree under the answer (occupied_walls.hpp: walls against walls)
+///     margins.hpp     how far the answer stands out from its rivals and its own turns
+///     correspondence.hpp  which room is which, each with its own local transform
+///   decision/         whether to accept it
+///     decision.hpp    p_correct, the calibrated probability that the answer is right
+///     acceptance.hpp  the rule that sets `ok`
+///   scale/            the source's scale unknown (`estimate_scale`): scale.hpp, scale_search.hpp
 ///   answer.hpp        the hypotheses of all pairs; what describes the selected answer
-///   evidence.hpp      how much the maps agree under the answer (occupied_walls.hpp: walls against walls)
-///   correspondence.hpp  which room is which, each with its own local transform
-///   margins.hpp       how far the answer stands out from its rivals and its own turns
-///   decision.hpp      p_correct, the calibrated probability that the answer is right
-///   acceptance.hpp    the rule that sets `ok`
-///   scale.hpp, scale_search.hpp  the source's scale unknown (`estimate_scale`)
 ///   result.hpp        MatchResult
-///   params.hpp        MatcherParams, every tunable, and the paper's preset
+///   params.hpp        MatcherParams, every tunable shared by the stages, and the paper's preset
 ///   schedule.hpp      which work runs on which thread, and its timing
 ///
 /// Two configurations ship. `Matcher<>` with `MatcherParams{}` is our default, chosen by
@@ -46,25 +50,25 @@
 #include "error.hpp"
 #include "grid.hpp"
 #include "image.hpp"
-#include "match/acceptance.hpp"
 #include "match/answer.hpp"
-#include "match/clusterer.hpp"
-#include "match/correspondence.hpp"
-#include "match/costs.hpp"
-#include "match/decision.hpp"
-#include "match/evidence.hpp"
-#include "match/features.hpp"
-#include "match/hypotheses.hpp"
+#include "match/decision/acceptance.hpp"
+#include "match/decision/decision.hpp"
 #include "match/inputs.hpp"
 #include "match/map_data.hpp"
-#include "match/margins.hpp"
 #include "match/params.hpp"
+#include "match/proposal/clusterer.hpp"
+#include "match/proposal/costs.hpp"
+#include "match/proposal/features.hpp"
+#include "match/proposal/hypotheses.hpp"
 #include "match/raster.hpp"
 #include "match/result.hpp"
-#include "match/scale.hpp"
-#include "match/scale_search.hpp"
+#include "match/scale/scale.hpp"
+#include "match/scale/scale_search.hpp"
 #include "match/schedule.hpp"
-#include "match/selection.hpp"
+#include "match/verification/correspondence.hpp"
+#include "match/verification/evidence.hpp"
+#include "match/verification/margins.hpp"
+#include "match/verification/selection.hpp"
 #include "parameters.hpp"
 #include "progress.hpp"
 #include "segment/voronoi_segmenter.hpp"
@@ -109,16 +113,16 @@ class Matcher {
                 "areamatch::OccupancyGrid&) const` (see segmenter.hpp)");
   static_assert(is_feature_set<Features>::value,
                 "areamatch::Matcher: the Features policy must be an areamatch::FeatureSet<F1, F2, ...> of feature "
-                "policies (see match/features.hpp)");
+                "policies (see match/proposal/features.hpp)");
   static_assert(!is_feature_set<Features>::value || is_weights_v<Weights, detail::feature_set_traits<Features>::size>,
                 "areamatch::Matcher: the Weights policy needs a member `std::array<double, N> values` with one "
-                "weight per feature of the FeatureSet, in its order (see match/costs.hpp)");
+                "weight per feature of the FeatureSet, in its order (see match/proposal/costs.hpp)");
   static_assert(is_clusterer_v<Clusterer>,
                 "areamatch::Matcher: the Clusterer policy needs `std::vector<areamatch::Cluster> cluster(const "
-                "std::vector<areamatch::Hypothesis>&) const` (see match/clusterer.hpp)");
+                "std::vector<areamatch::Hypothesis>&) const` (see match/proposal/clusterer.hpp)");
   static_assert(is_selection_v<Selection>,
                 "areamatch::Matcher: the Selection policy needs `areamatch::Selected select(const "
-                "areamatch::SelectionInputs&, areamatch::MatchStatistics&) const` (see match/selection.hpp)");
+                "areamatch::SelectionInputs&, areamatch::MatchStatistics&) const` (see match/verification/selection.hpp)");
 
  public:
   Segmenter segmenter;
@@ -292,7 +296,7 @@ class Matcher {
     return match_graphs(MapView{&source, &source_graph, nullptr}, MapView{&dest, &dest_graph, nullptr});
   }
 
-  /// The source's scale unknown (match/scale.hpp): the source is segmented with `segmenter` and
+  /// The source's scale unknown (match/scale/scale.hpp): the source is segmented with `segmenter` and
   /// matched at each candidate scale; the best candidate's ICP-refined scale is run once more.
   /// The result maps the source's frame as given; `source_graph`, when given, receives the
   /// source's graph at the estimated scale (its cells are the source grid's cells, its metres

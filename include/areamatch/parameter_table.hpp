@@ -6,9 +6,9 @@
 /// too; `test_parameters` checks that docs/parameters.md lists exactly these names, and that each
 /// name reaches its own field and no other.
 
-#include "match/clusterer.hpp"
 #include "match/params.hpp"
-#include "match/selection.hpp"
+#include "match/proposal/clusterer.hpp"
+#include "match/verification/selection.hpp"
 #include "segment/voronoi_segmenter.hpp"
 
 #include <string>

@@ -7,11 +7,11 @@
 #include "detail/tiny_font.hpp"
 #include "grid.hpp"
 #include "image.hpp"
-#include "match/occupied_walls.hpp"
 #include "match/result.hpp"
+#include "match/verification/occupied_walls.hpp"
+#include "merge/fuse.hpp"
 #include "segment/skeleton.hpp"
 #include "transform.hpp"
-#include "merge/fuse.hpp"
 #include "warp/field.hpp"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 #pragma once
-// `areamatch calibrate`: fits the accept/reject decision (areamatch/match/decision.hpp) on the
+// `areamatch calibrate`: fits the accept/reject decision (areamatch/match/decision/decision.hpp) on the
 // rows of `areamatch eval --out DIR` runs (DIR/results.csv) and measures it by leave-one-
 // building-out cross-validation: each building's pairs are judged by a model fitted without any
 // pair that touches that building. Program code, not library API.
@@ -8,7 +8,7 @@
 #include "eval_report.hpp"
 #include "manifest.hpp"
 #include <areamatch/detail/format.hpp>
-#include <areamatch/match/decision.hpp>
+#include <areamatch/match/decision/decision.hpp>
 
 #include <algorithm>
 #include <array>

@@ -4,7 +4,7 @@
 /// a broken piece, when a room counts as found. Lengths in metres, angles in radians.
 
 #include "../error.hpp"
-#include "../match/refine.hpp"
+#include "../match/verification/refine.hpp"
 #include "../transform.hpp"
 #include "../warp/params.hpp"
 

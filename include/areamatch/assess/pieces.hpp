@@ -20,8 +20,8 @@
 
 #include "../area_graph.hpp"
 #include "../grid.hpp"
-#include "../match/correspondence.hpp"
-#include "../match/refine.hpp"
+#include "../match/verification/correspondence.hpp"
+#include "../match/verification/refine.hpp"
 #include "../transform.hpp"
 #include "params.hpp"
 #include "tiles.hpp"

@@ -7,8 +7,8 @@
 #include "../area_graph.hpp"
 #include "../detail/disjoint_sets.hpp"
 #include "../grid.hpp"
-#include "../match/correspondence.hpp"
-#include "../match/refine.hpp"
+#include "../match/verification/correspondence.hpp"
+#include "../match/verification/refine.hpp"
 #include "../transform.hpp"
 #include "params.hpp"
 

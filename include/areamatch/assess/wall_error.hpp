@@ -7,7 +7,7 @@
 /// wall is not displaced but missing from the other map, and the share at the cap says how much.
 
 #include "../grid.hpp"
-#include "../match/refine.hpp"
+#include "../match/verification/refine.hpp"
 #include "../segment/morphology.hpp"
 #include "../warp/field.hpp"
 #include "../warp/fit.hpp"

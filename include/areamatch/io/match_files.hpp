@@ -14,9 +14,9 @@
 /// const auto run2 = areamatch::match_map_files(mine, "robot.yaml", "layout.yaml", options);
 /// \endcode
 
-#include "../io.hpp"
 #include "../detail/parallel.hpp"
 #include "../detail/timing.hpp"
+#include "../io.hpp"
 #include "../matcher.hpp"
 #include "../parameters.hpp"
 #include "../segment/voronoi_segmenter.hpp"
@@ -40,7 +40,7 @@ struct MapPairOptions {
   /// Also try the source's mirror image. Unset: the matcher's own (`MatcherParams::allow_reflection`,
   /// false for the overloads without a matcher).
   std::optional<bool> allow_reflection;
-  bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale.hpp)
+  bool estimate_scale = false;                ///< the source's resolution is unknown (match/scale/scale.hpp)
   /// Load and segment the two maps side by side on this many threads (and build their match data
   /// so: `MatcherParams::threads`); the same result for any count. Unset: the matcher's own (1 for
   /// the overloads without a matcher).

@@ -7,16 +7,16 @@
 #include "../area_graph.hpp"
 #include "../detail/parallel.hpp"
 #include "../transform.hpp"
-#include "correspondence.hpp"
-#include "costs.hpp"
-#include "decision.hpp"
-#include "evidence.hpp"
-#include "hypotheses.hpp"
+#include "decision/decision.hpp"
 #include "map_data.hpp"
-#include "margins.hpp"
 #include "params.hpp"
+#include "proposal/costs.hpp"
+#include "proposal/hypotheses.hpp"
 #include "result.hpp"
-#include "selection.hpp"
+#include "verification/correspondence.hpp"
+#include "verification/evidence.hpp"
+#include "verification/margins.hpp"
+#include "verification/selection.hpp"
 
 #include <cstddef>
 #include <vector>

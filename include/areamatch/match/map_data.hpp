@@ -7,12 +7,12 @@
 #include "../area_graph.hpp"
 #include "../detail/parallel.hpp"
 #include "../grid.hpp"
-#include "evidence.hpp"
-#include "occupied_walls.hpp"
-#include "hypotheses.hpp"
 #include "params.hpp"
+#include "proposal/hypotheses.hpp"
 #include "raster.hpp"
-#include "refine.hpp"
+#include "verification/evidence.hpp"
+#include "verification/occupied_walls.hpp"
+#include "verification/refine.hpp"
 
 #include <Eigen/Core>
 

@@ -5,11 +5,11 @@
 /// Why each default is what it is, with the measurements: docs/parameters.md and docs/matching.md.
 
 #include "../error.hpp"
-#include "correspondence.hpp"
-#include "decision.hpp"
-#include "hypotheses.hpp"
-#include "refine.hpp"
-#include "scale.hpp"
+#include "decision/decision.hpp"
+#include "proposal/hypotheses.hpp"
+#include "scale/scale.hpp"
+#include "verification/correspondence.hpp"
+#include "verification/refine.hpp"
 
 #include <cmath>
 #include <cstddef>
@@ -25,7 +25,7 @@ struct MatcherParams {
   /// common). Both sides are judged by the same score.
   bool allow_reflection = false;
   /// Treat the source's resolution as unknown, within [scale.min_scale, scale.max_scale] × the
-  /// given one, and estimate it (match/scale.hpp). Needs the grids (the source is segmented at
+  /// given one, and estimate it (match/scale/scale.hpp). Needs the grids (the source is segmented at
   /// each candidate scale) and `refine` (the ICP fits the scale); about 10× the time of a match.
   bool estimate_scale = false;
   ScaleParams scale;
@@ -39,7 +39,7 @@ struct MatcherParams {
   unsigned threads = 1;
 
   // Shared by the stages after the clusters (the selection's own settings are its policy's:
-  // `WholeMapSelection::Params`, match/selection.hpp).
+  // `WholeMapSelection::Params`, match/verification/selection.hpp).
   double coarse_cell_m = 0.25;          ///< raster cell for scoring all candidates (and raster OP)
   double fine_cell_m = 0.25;            ///< raster cell for the finalists' IoU (0.1 measured no better)
   bool refine = true;
@@ -68,7 +68,7 @@ struct MatcherParams {
   double different_translation_m = 1.0;
   /// The accept/reject rule — its thresholds (`min_score`, `min_agreement`, the agreement gate's,
   /// `accept_p_correct`, `min_p_correct`, `min_margin`) and the calibrated model of
-  /// `MatchResult::p_correct` — in one place (match/decision.hpp; applied by match/acceptance.hpp).
+  /// `MatchResult::p_correct` — in one place (match/decision/decision.hpp; applied by match/decision/acceptance.hpp).
   DecisionParams decision;
   /// The weight of the free-space IoU in `MatchEvidence::agreement` (the rest is the better of
   /// the two wall agreements). A map confirmed on little of the other's free space is less certain.
@@ -81,7 +81,7 @@ struct MatcherParams {
   CorrespondenceParams correspondences;
   /// Most areas accepted per map; beyond, `match` throws `limit_error`. A guard against a map
   /// shattered into pieces (noise read as walls), no longer against cost: the area pairs are
-  /// found along the features' bound keys (match/costs.hpp) and the evidence lists only the pairs
+  /// found along the features' bound keys (match/proposal/costs.hpp) and the evidence lists only the pairs
   /// that meet, so matching grows with the areas, not with areas_source × areas_dest. A
   /// 400 × 300 m generated floor has about 5000 areas; `max_grid_cells` bounds a map long before
   /// this does (docs/performance.md).

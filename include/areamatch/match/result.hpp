@@ -64,7 +64,7 @@ struct MatchEvidence {
 };
 
 /// A source area, the destination area it corresponds to, and the area's own transform
-/// (see match/correspondence.hpp).
+/// (see match/verification/correspondence.hpp).
 struct MatchedAreaPair {
   int source = -1;
   int dest = -1;
@@ -151,10 +151,10 @@ struct MatchResult {
   double margin_different = std::numeric_limits<double>::quiet_NaN();  ///< NaN when there is no rival
   double margin_mirrored = std::numeric_limits<double>::quiet_NaN();   ///< NaN without allow_reflection
   bool ambiguous = false;          ///< margin below `MatcherParams::ambiguity_margin`
-  /// The calibrated probability that the transform is right (match/decision.hpp); `ok` needs at
+  /// The calibrated probability that the transform is right (match/decision/decision.hpp); `ok` needs at
   /// least `DecisionParams::min_p_correct`.
   double p_correct = 0.0;
-  /// How much the maps agree under the result, measured several ways (see match/evidence.hpp).
+  /// How much the maps agree under the result, measured several ways (see match/verification/evidence.hpp).
   MatchEvidence evidence;
   std::vector<MatchedAreaPair> matched_areas;
   MatchStatistics statistics;

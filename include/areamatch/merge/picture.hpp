@@ -6,7 +6,7 @@
 #include "../detail/tiny_font.hpp"
 #include "../grid.hpp"
 #include "../image.hpp"
-#include "../match/occupied_walls.hpp"
+#include "../match/verification/occupied_walls.hpp"
 #include "../render.hpp"
 #include "params.hpp"
 #include "result.hpp"

@@ -26,7 +26,7 @@
 #include "../error.hpp"
 #include "../grid.hpp"
 #include "../match/raster.hpp"
-#include "../match/refine.hpp"
+#include "../match/verification/refine.hpp"
 #include "field.hpp"
 #include "params.hpp"
 #include "system.hpp"

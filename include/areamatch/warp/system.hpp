@@ -4,7 +4,7 @@
 /// wall points paired with destination walls, and the system solved for fixed pairs (a direct
 /// factorisation on coarse grids, preconditioned conjugate gradients on fine ones).
 
-#include "../match/refine.hpp"
+#include "../match/verification/refine.hpp"
 #include "field.hpp"
 #include "params.hpp"
 

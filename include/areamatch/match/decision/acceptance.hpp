@@ -1,16 +1,16 @@
 #pragma once
-/// \file match/acceptance.hpp
+/// \file match/decision/acceptance.hpp
 /// Applies the rule that sets `MatchResult::ok`, whose thresholds and model are `DecisionParams`
-/// (match/decision.hpp; docs/matching.md, "the decision"): an answer is refused when its whole-map
+/// (match/decision/decision.hpp; docs/matching.md, "the decision"): an answer is refused when its whole-map
 /// score is below `min_score`, when the maps agree too little and the calibrated model is not sure
 /// (`min_agreement`, `accept_p_correct`; the agreement alone does not do where the walls agree both
 /// ways, `gate_max_lower_walls`, or on little shared free space, `gate_min_overlap_m2`), when the
 /// model finds it too likely wrong (`min_p_correct`), or when a rival is too close
 /// (`min_margin`); and words each refusal.
 
-#include "../detail/format.hpp"
+#include "../../detail/format.hpp"
+#include "../result.hpp"
 #include "decision.hpp"
-#include "result.hpp"
 
 #include <string>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/decision.hpp
+/// \file match/decision/decision.hpp
 /// Whether a match is right: a calibrated probability from several signals of the result, and
 /// the rule that turns it into `MatchResult::ok`.
 ///
@@ -35,8 +35,8 @@
 /// building we have plus synthetic ones (`areamatch calibrate`, docs/evaluation.md). Fitting your
 /// own on your buildings and sensors works the same way.
 
-#include "../error.hpp"
-#include "result.hpp"
+#include "../../error.hpp"
+#include "../result.hpp"
 
 #include <Eigen/Cholesky>
 #include <Eigen/Core>
@@ -75,7 +75,7 @@ struct DecisionFeatures {
 /// when its whole-map score is at least `min_score`, p ≥ `accept_p_correct` or the agreement gate
 /// lets it through (agreement ≥ `min_agreement`, the lower wall agreement ≤ `gate_max_lower_walls`,
 /// at least `gate_min_overlap_m2` of shared free space), p ≥ `min_p_correct`, and no rival is
-/// within `min_margin`. match/acceptance.hpp applies it and words each refusal.
+/// within `min_margin`. match/decision/acceptance.hpp applies it and words each refusal.
 struct DecisionParams {
   /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected.
   double min_score = 0.25;

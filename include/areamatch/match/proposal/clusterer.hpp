@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/clusterer.hpp
+/// \file match/proposal/clusterer.hpp
 /// Clustering of hypotheses (paper §III-E, docs/algorithm.md).
 ///
 /// A clusterer policy groups hypotheses and returns the groups best first; it must be
@@ -14,12 +14,12 @@
 ///   }
 /// };
 /// \endcode
-/// What the matcher does with the clusters is the Selection policy's choice (match/selection.hpp):
+/// What the matcher does with the clusters is the Selection policy's choice (match/verification/selection.hpp):
 /// the paper's takes the first (largest) cluster; our default verifies the best members of every
 /// cluster on the whole map, so there clustering only ranks and removes duplicates.
 
-#include "../error.hpp"
-#include "../transform.hpp"
+#include "../../error.hpp"
+#include "../../transform.hpp"
 #include "hypotheses.hpp"
 
 #include <algorithm>

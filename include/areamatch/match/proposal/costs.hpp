@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/costs.hpp
+/// \file match/proposal/costs.hpp
 /// Weighted cost matrix and mutual k-nearest-neighbour area pairs (paper §III-C,
 /// docs/algorithm.md).
 ///
@@ -13,8 +13,8 @@
 /// Weights should be ≥ 0 and sum to one so the total cost stays in [0, 1]; `weighted_cost`
 /// checks this.
 
-#include "../detail/parallel.hpp"
-#include "../error.hpp"
+#include "../../detail/parallel.hpp"
+#include "../../error.hpp"
 #include "features.hpp"
 
 #include <Eigen/Core>

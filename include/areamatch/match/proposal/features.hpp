@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/features.hpp
+/// \file match/proposal/features.hpp
 /// Per-area features and their costs (paper §III-B, docs/algorithm.md), and `FeatureSet`,
 /// which composes them.
 ///
@@ -24,12 +24,12 @@
 /// `bound_key`, when a feature has it, is a number ≥ 0 per descriptor with
 /// cost(a, b) ≥ relative_difference(bound_key(a), bound_key(b)) for every a, b. The pairing then
 /// skips area pairs whose keys differ too much for the pair to be among the k nearest: the same
-/// pairs, found without comparing every area with every other (match/costs.hpp).
+/// pairs, found without comparing every area with every other (match/proposal/costs.hpp).
 /// The paper's three features are `AreaSize`, `PassageDistances` and `HullDiameter`
-/// (match/paper_features.hpp).
+/// (match/proposal/paper_features.hpp).
 
-#include "../area_graph.hpp"
-#include "../geometry.hpp"
+#include "../../area_graph.hpp"
+#include "../../geometry.hpp"
 #include "paper_features.hpp"
 
 #include <Eigen/Core>
@@ -110,7 +110,7 @@ struct FeatureSet {
   static_assert((is_feature_v<Features> && ...),
                 "areamatch: every FeatureSet member must be a feature policy: a type with "
                 "`using descriptor_type = ...;`, `descriptor_type describe(const AreaGraph&, const Area&) const` "
-                "and `double cost(const descriptor_type&, const descriptor_type&) const` (see match/features.hpp)");
+                "and `double cost(const descriptor_type&, const descriptor_type&) const` (see match/proposal/features.hpp)");
 
   static constexpr std::size_t size = sizeof...(Features);
   using descriptors_type = std::tuple<std::vector<typename Features::descriptor_type>...>;

@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/hypotheses.hpp
+/// \file match/proposal/hypotheses.hpp
 /// Transform hypotheses: for every mutually matched area pair, a rotation from the segments its
 /// features matched and a translation that puts the source segment's midpoint on the
 /// destination's (paper §III-D, docs/algorithm.md), with the pair's overlap as a filter.
@@ -9,13 +9,13 @@
 /// also emits the turns by 180° and ±90° and the hull diameter next to the passage pair, and adds
 /// rotations from the maps' dominant wall directions anchored at each pair's centroids.
 
-#include "../area_graph.hpp"
-#include "../error.hpp"
-#include "../geometry.hpp"
-#include "../transform.hpp"
+#include "../../area_graph.hpp"
+#include "../../error.hpp"
+#include "../../geometry.hpp"
+#include "../../transform.hpp"
+#include "../raster.hpp"
 #include "costs.hpp"
 #include "features.hpp"
-#include "raster.hpp"
 
 #include <Eigen/Core>
 

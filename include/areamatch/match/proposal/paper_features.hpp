@@ -1,12 +1,12 @@
 #pragma once
-/// \file match/paper_features.hpp
+/// \file match/proposal/paper_features.hpp
 /// The paper's three area features (§III-B, docs/algorithm.md): `AreaSize`, `PassageDistances`
 /// and `HullDiameter`, with what they share: the relative difference they compare by and the
 /// segments they match (the hypothesis stage turns a segment pair into a rotation). The feature
-/// contract and `FeatureSet` are in match/features.hpp.
+/// contract and `FeatureSet` are in match/proposal/features.hpp.
 
-#include "../area_graph.hpp"
-#include "../geometry.hpp"
+#include "../../area_graph.hpp"
+#include "../../geometry.hpp"
 
 #include <Eigen/Core>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/scale.hpp
+/// \file match/scale/scale.hpp
 /// Matching when the source map's resolution is not known (a scanned floor plan, a map whose
 /// YAML is wrong): `MatcherParams::estimate_scale`.
 ///
@@ -16,10 +16,10 @@
 /// `T_dest_source` maps the source's world frame *as given* to the destination's, so its
 /// `scale` is the estimate.
 
-#include "../error.hpp"
-#include "../grid.hpp"
-#include "../transform.hpp"
-#include "result.hpp"
+#include "../../error.hpp"
+#include "../../grid.hpp"
+#include "../../transform.hpp"
+#include "../result.hpp"
 
 #include <cmath>
 #include <vector>

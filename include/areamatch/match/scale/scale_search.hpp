@@ -1,22 +1,22 @@
 #pragma once
-/// \file match/scale_search.hpp
-/// The unknown-scale search (`MatcherParams::estimate_scale`, match/scale.hpp): the source
+/// \file match/scale/scale_search.hpp
+/// The unknown-scale search (`MatcherParams::estimate_scale`, match/scale/scale.hpp): the source
 /// segmented and matched at every candidate scale, the best `scale.finalists` candidates' scales
 /// swept by rigid ICP, the whole pipeline re-run at each swept scale, and the re-run the maps
 /// agree with most kept.
 
-#include "../area_graph.hpp"
-#include "../detail/format.hpp"
-#include "../detail/timing.hpp"
-#include "../grid.hpp"
-#include "../transform.hpp"
-#include "evidence.hpp"
-#include "map_data.hpp"
-#include "params.hpp"
-#include "refine.hpp"
-#include "result.hpp"
+#include "../../area_graph.hpp"
+#include "../../detail/format.hpp"
+#include "../../detail/timing.hpp"
+#include "../../grid.hpp"
+#include "../../transform.hpp"
+#include "../map_data.hpp"
+#include "../params.hpp"
+#include "../result.hpp"
+#include "../verification/evidence.hpp"
+#include "../verification/refine.hpp"
+#include "../verification/selection.hpp"
 #include "scale.hpp"
-#include "selection.hpp"
 
 #include <algorithm>
 #include <chrono>

@@ -1,10 +1,10 @@
 #pragma once
-/// \file match/boundary_lookup.hpp
+/// \file match/verification/boundary_lookup.hpp
 /// The destination side of ICP and of the wall evidence: boundary points with, per cell of a square
 /// lookup grid, the nearest one (optionally per facing direction), and their normals.
 
-#include "../error.hpp"
-#include "../transform.hpp"
+#include "../../error.hpp"
+#include "../../transform.hpp"
 
 #include <Eigen/Core>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/correspondence.hpp
+/// \file match/verification/correspondence.hpp
 /// Room-to-room correspondences with a transform per room. The global transform is one rigid
 /// motion; a SLAM map is bent (drift), so a room far from the map's middle can sit half a metre
 /// off its drawn counterpart. Each source area gets its own transform — trimmed ICP of the
@@ -8,14 +8,14 @@
 /// it lands on under that transform. This is what transfers room labels from a layout to a robot
 /// map (`areamatch match --labels`).
 
-#include "../area_graph.hpp"
-#include "../detail/parallel.hpp"
-#include "../error.hpp"
-#include "../grid.hpp"
-#include "../transform.hpp"
-#include "raster.hpp"
+#include "../../area_graph.hpp"
+#include "../../detail/parallel.hpp"
+#include "../../error.hpp"
+#include "../../grid.hpp"
+#include "../../transform.hpp"
+#include "../raster.hpp"
+#include "../result.hpp"
 #include "refine.hpp"
-#include "result.hpp"
 
 #include <Eigen/Core>
 

@@ -1,12 +1,12 @@
 #pragma once
-/// \file match/edges.hpp
+/// \file match/verification/edges.hpp
 /// The edges of a map's free space or of its areas, as raster cells and as thinned world points, and
 /// each free-space edge point's free side: what refinement (`refine.hpp`), the evidence and the
 /// selection lay onto each other.
 
-#include "../area_graph.hpp"
-#include "../grid.hpp"
-#include "raster.hpp"
+#include "../../area_graph.hpp"
+#include "../../grid.hpp"
+#include "../raster.hpp"
 
 #include <Eigen/Core>
 

@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/evidence.hpp
+/// \file match/verification/evidence.hpp
 /// How much the two maps agree under one transform, measured several ways, so that whether an
 /// answer is good enough to accept can be decided (`DecisionParams::min_agreement`).
 ///
@@ -9,13 +9,13 @@
 /// different buildings of the dataset, 0.38 on a true SLAM-to-layout pair). The measures here
 /// look both ways and at the building's structure, which chance agrees with much less.
 
-#include "../area_graph.hpp"
-#include "../grid.hpp"
-#include "../transform.hpp"
+#include "../../area_graph.hpp"
+#include "../../grid.hpp"
+#include "../../transform.hpp"
+#include "../raster.hpp"
+#include "../result.hpp"
 #include "occupied_walls.hpp"
-#include "raster.hpp"
 #include "refine.hpp"
-#include "result.hpp"
 
 #include <Eigen/Core>
 

@@ -1,15 +1,15 @@
 #pragma once
-/// \file match/margins.hpp
+/// \file match/verification/margins.hpp
 /// How far the answer stands out from its rivals: the selection's other finalists
 /// (`MatchResult::margin_different`, `margin_mirrored`, `margin`) and its own quarter turns
 /// and mirror images (`MatchEvidence::turn_margin`).
 
-#include "../transform.hpp"
+#include "../../transform.hpp"
+#include "../params.hpp"
+#include "../raster.hpp"
+#include "../result.hpp"
 #include "evidence.hpp"
-#include "params.hpp"
-#include "raster.hpp"
 #include "refine.hpp"
-#include "result.hpp"
 #include "selection.hpp"
 
 #include <Eigen/Core>

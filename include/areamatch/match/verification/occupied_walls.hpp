@@ -1,14 +1,14 @@
 #pragma once
-/// \file match/occupied_walls.hpp
+/// \file match/verification/occupied_walls.hpp
 /// Walls against walls (`MatchEvidence::occupied_wall_agreement`): each map's occupied cells,
 /// thinned, and two masks of where the map has an occupied cell nearby — within the agreement
 /// distance ("near") and within the context distance — on a coarse square raster, so that
 /// judging a transform costs two mask reads per point.
 
-#include "../grid.hpp"
-#include "raster.hpp"
+#include "../../grid.hpp"
+#include "../../transform.hpp"
+#include "../raster.hpp"
 #include "refine.hpp"
-#include "../transform.hpp"
 
 #include <Eigen/Core>
 #include <Eigen/Geometry>

@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/refine.hpp
+/// \file match/verification/refine.hpp
 /// Trimmed ICP on the boundaries of the two maps' area-covered free space: turns a coarse
 /// per-area transform into an accurate global one (docs/algorithm.md). The
 /// matching gate shrinks from `gates_m.front()` to `gates_m.back()`; at each step only the
@@ -12,8 +12,8 @@
 /// room one map entered and one only the other did look opposite ways, a wall's thickness apart,
 /// and would pull the map across it.
 
-#include "../error.hpp"
-#include "../transform.hpp"
+#include "../../error.hpp"
+#include "../../transform.hpp"
 #include "boundary_lookup.hpp"
 #include "edges.hpp"
 

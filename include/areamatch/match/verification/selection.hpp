@@ -1,5 +1,5 @@
 #pragma once
-/// \file match/selection.hpp
+/// \file match/verification/selection.hpp
 /// Choosing the answer among the clusters: the Selection policy, `Matcher`'s fifth template
 /// parameter.
 ///
@@ -25,19 +25,19 @@
 /// whole map and refines the best few by ICP; `LargestClusterSelection` is the paper's, the
 /// largest cluster's member with the highest Σ OP.
 
-#include "../area_graph.hpp"
-#include "../detail/format.hpp"
-#include "../detail/parallel.hpp"
-#include "../error.hpp"
-#include "../transform.hpp"
-#include "clusterer.hpp"
-#include "costs.hpp"
+#include "../../area_graph.hpp"
+#include "../../detail/format.hpp"
+#include "../../detail/parallel.hpp"
+#include "../../error.hpp"
+#include "../../transform.hpp"
+#include "../params.hpp"
+#include "../proposal/clusterer.hpp"
+#include "../proposal/costs.hpp"
+#include "../proposal/hypotheses.hpp"
+#include "../raster.hpp"
+#include "../result.hpp"
 #include "evidence.hpp"
-#include "hypotheses.hpp"
-#include "params.hpp"
-#include "raster.hpp"
 #include "refine.hpp"
-#include "result.hpp"
 
 #include <Eigen/Core>
 
