@@ -63,9 +63,6 @@ struct WallDirectionParams {
   int peak_window_bins = 2;       ///< a bin's length is summed over ±this many bins: a peak split across bins is still found
   double mean_window_bins = 5.0;  ///< the mean is over the edges within ±this many bins of the peak's centre
 
-  bool operator==(const WallDirectionParams& o) const {
-    return bins == o.bins && peak_window_bins == o.peak_window_bins && mean_window_bins == o.mean_window_bins;
-  }
   void validate() const {
     if (bins < 1) throw parameter_error("WallDirectionParams::bins must be >= 1");
     if (peak_window_bins < 0 || 2 * peak_window_bins + 1 > bins) {
