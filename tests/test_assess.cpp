@@ -6,6 +6,7 @@
 #include <doctest/doctest.h>
 #include "test_support.hpp"
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -96,6 +97,27 @@ TEST_CASE("a broken generated map: the broken piece is found with its turn") {
   }
 }
 
+TEST_CASE("breaks that add up are not merged into one piece") {
+  // Three cuts of 8 degrees each: the far pieces turn 16-24 degrees from the near one, more than a
+  // tile's fit could turn from the whole map's before 2026-12-06 (this map was then one piece).
+  // Each tile is now measured from the neighbour it started from, and a tile across a cut is
+  // fitted again from turned starts (AssessParams::piece_retry_turns_rad).
+  RobotMapParams rp = plain_robot(0.9);
+  rp.break_count = 3;
+  rp.break_min_rotation_rad = rp.break_max_rotation_rad = 8.0 * pi / 180.0;
+  const AssessCase c = assess_case(1322, rp);
+  REQUIRE(c.robot.breaks.size() == 3);
+  AssessParams params;
+  params.assume_same_building = true;
+  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
+  REQUIRE(a.ok);
+  MESSAGE("pieces found: " << a.brokenness.pieces.size() << " of 4");
+  CHECK(a.brokenness.pieces.size() >= 2);
+  double widest = 0.0;
+  for (const RigidPiece& piece : a.brokenness.pieces) widest = std::max(widest, std::abs(piece.rotation_rad));
+  CHECK(widest > 10.0 * pi / 180.0);  // a piece beyond the first cut is found
+}
+
 TEST_CASE("the generator's broken pieces: truth and random stream") {
   RobotMapParams rp = plain_robot(0.5);
   const SyntheticBuilding building = generate_building({}, 1400);
@@ -175,4 +197,5 @@ TEST_CASE("bad assessment parameters are refused by name") {
   refused([](AssessParams& p) { p.partly_found_share = 0.8; }, "partly_found_share");
   refused([](AssessParams& p) { p.sample_cell_m = std::nan(""); }, "sample_cell_m");
   refused([](AssessParams& p) { p.warp.bend_length_m = 0.0; }, "bend_length_m");
+  refused([](AssessParams& p) { p.piece_retry_turns_rad = {0.1, std::nan("")}; }, "piece_retry_turns_rad");
 }

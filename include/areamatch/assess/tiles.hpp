@@ -92,8 +92,9 @@ inline WallTiles wall_tiles(const OccupancyGrid& map, const AreaGraph& graph, co
 }
 
 /// Each tile's own fit, walked breadth-first from the tile with the most walls, each starting
-/// from the neighbour it was reached from. `fitted[t]`: the fit counts (enough walls, near the
-/// whole map's transform `T`, laying most of them); the others keep what they started from.
+/// from the neighbour it was reached from (and, where that fails, from it turned by
+/// `piece_retry_turns_rad`, a retry kept from `piece_retry_min_wall_agreement`). `fitted[t]`: the
+/// fit counts (enough walls, near its start, laying most of them); the others keep their start.
 inline void fit_each_tile(const WallTiles& tiles, const BoundaryLookup& reference, const Similarity2& T,
                           const AssessParams& params, std::vector<Similarity2>& fit, std::vector<char>& fitted) {
   const std::size_t n = tiles.size();
@@ -112,12 +113,29 @@ inline void fit_each_tile(const WallTiles& tiles, const BoundaryLookup& referenc
       const std::size_t i = queue.front();
       queue.pop();
       if (tiles.walls[i].size() >= params.piece_min_wall_points) {
-        const Similarity2 own = refine_icp(tiles.walls[i], reference, fit[i], params.piece_icp, &tiles.sides[i]);
         const Eigen::Vector2d c = tiles.shared_edge(i, i);
-        if (std::abs(wrap_angle(own.rotation - T.rotation)) <= params.piece_max_rotation_rad &&
-            (own * c - T * c).norm() <= params.piece_max_shift_m &&
-            tiles.agreement(i, own, reference, params) >= params.piece_min_wall_agreement) {
-          fit[i] = own;
+        const Similarity2 start = fit[i];
+        auto counts = [&](const Similarity2& own) {
+          return std::abs(wrap_angle(own.rotation - start.rotation)) <= params.piece_max_rotation_rad &&
+                 (own * c - start * c).norm() <= params.piece_max_shift_m;
+        };
+        Similarity2 best = refine_icp(tiles.walls[i], reference, fit[i], params.piece_icp, &tiles.sides[i]);
+        double best_agreement = counts(best) ? tiles.agreement(i, best, reference, params) : -1.0;
+        if (best_agreement < params.piece_min_wall_agreement) {
+          for (const double turn : params.piece_retry_turns_rad) {
+            Similarity2 about_centre;  // the start turned about the tile's middle
+            about_centre.rotation = turn;
+            about_centre.translation = c - Eigen::Rotation2Dd(turn) * c;
+            const Similarity2 own = refine_icp(tiles.walls[i], reference, fit[i] * about_centre, params.piece_icp, &tiles.sides[i]);
+            const double agreement = counts(own) ? tiles.agreement(i, own, reference, params) : -1.0;
+            if (agreement >= params.piece_retry_min_wall_agreement && agreement > best_agreement) {
+              best = own;
+              best_agreement = agreement;
+            }
+          }
+        }
+        if (best_agreement >= params.piece_min_wall_agreement) {
+          fit[i] = best;
           fitted[i] = 1;
         }
       }
