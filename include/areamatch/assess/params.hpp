@@ -72,8 +72,7 @@ struct AssessParams {
                                                -12.0 * pi / 180.0, 12.0 * pi / 180.0};
   /// ...and keeps the best retried fit only when it lays at least this share of the tile's walls:
   /// the best of several starts needs more than one fit does, since in a cluttered room one of
-  /// them lays half the walls by chance (at `piece_min_wall_agreement`, lab_b's SLAM map got
-  /// turned tile fits that moved its coverage from 67.6 % to 63.0 %).
+  /// them lays half the walls by chance (what that did to a real SLAM map: docs/assessment.md).
   double piece_retry_min_wall_agreement = 0.7;
   /// Neighbouring tiles are one rigid piece when their own fits differ by at most this turn...
   double piece_rotation_tolerance_rad = 1.0 * pi / 180.0;

@@ -11,13 +11,14 @@
 /// that the fits follow a map that turns step by step instead of jumping to the next room; a fit
 /// counts only where it lays most of the tile's walls (`piece_min_wall_agreement`) and stays near
 /// the fit it started from; a tile across a cut, whose walls turned at once, is fitted again from
-/// that start turned a few ways (`piece_retry_turns_rad`). Neighbouring tiles are one piece when their fits agree: within
-/// `piece_rotation_tolerance_rad`, and within `piece_shift_tolerance_m` at their common side. A
-/// smooth bend (SLAM drift) turns little from one tile to the next and stays one piece however far
-/// it bends in all; a failed loop closure turns everything beyond it at once. Pieces with fewer
-/// than `piece_min_points` wall points and tiles too bare to fit join the neighbouring piece that
-/// lays their walls best. Each piece is then fitted on all its walls, neighbouring pieces whose
-/// own fits agree after all are joined, and each area goes to the piece holding most of its walls.
+/// that start turned a few ways (`piece_retry_turns_rad`). Neighbouring tiles are one piece when
+/// their fits agree: within `piece_rotation_tolerance_rad`, and within `piece_shift_tolerance_m`
+/// at their common side. A smooth bend (SLAM drift) turns little from one tile to the next and
+/// stays one piece however far it bends in all; a failed loop closure turns everything beyond it
+/// at once. Pieces with fewer than `piece_min_points` wall points and tiles too bare to fit join
+/// the neighbouring piece that lays their walls best. Each piece is then fitted on all its walls,
+/// neighbouring pieces whose own fits agree after all are joined, and each area goes to the piece
+/// holding most of its walls.
 
 #include "../area_graph.hpp"
 #include "../grid.hpp"
