@@ -1,8 +1,9 @@
 #pragma once
 // The four fuzz targets compiled into one unit, each entry point renamed, with a table from
 // target name to entry point. Each target alone costs a compile of the whole library, so both
-// programs that run them — the libFuzzer program (fuzz_all.cpp) and the replay without libFuzzer
-// (replay_all.cpp) — build all four from this one unit and pick a target at run time.
+// places that run them — the libFuzzer program (fuzz_all.cpp) and the replay inside the unit-test
+// program (tests/test_fuzz_replay.cpp) — build all four from this one header and pick a target at
+// run time.
 #define LLVMFuzzerTestOneInput areamatch_fuzz_image
 #include "fuzz_image.cpp"
 #undef LLVMFuzzerTestOneInput

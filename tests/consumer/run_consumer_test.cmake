@@ -1,5 +1,6 @@
 # ctest driver: builds tests/consumer against areamatch (installed, or via add_subdirectory) and runs it.
-# Arguments: SOURCE_DIR (areamatch), WORK_DIR (scratch), MODE (find_package | add_subdirectory), GENERATOR.
+# Arguments: SOURCE_DIR (areamatch), WORK_DIR (scratch), MODE (find_package | add_subdirectory), GENERATOR,
+# BUILD_TYPE (the consumer's CMAKE_BUILD_TYPE; empty: none, CMake's default for a user who sets none).
 file(REMOVE_RECURSE "${WORK_DIR}")
 file(MAKE_DIRECTORY "${WORK_DIR}")
 
@@ -23,6 +24,6 @@ else()
   list(APPEND consumer_args -DAREAMATCH_SOURCE_DIR=${SOURCE_DIR})
 endif()
 run(${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/consumer-build" -G "${GENERATOR}"
-    -DCMAKE_BUILD_TYPE=Release ${consumer_args})
+    "-DCMAKE_BUILD_TYPE=${BUILD_TYPE}" ${consumer_args})
 run(${CMAKE_COMMAND} --build "${WORK_DIR}/consumer-build")
 run("${WORK_DIR}/consumer-build/consumer" "${WORK_DIR}")
