@@ -62,7 +62,9 @@ if [ "$mode" = sanitize ]; then
     echo "setup: $build_dir was configured with another compiler; configuring it afresh with clang++"
     rm -rf "$cache" "$build_dir/CMakeFiles"
   fi
-  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" \
+  # CMAKE_CXX_FLAGS_DEBUG emptied: CMake's Debug default, -g, comes after these flags and would
+  # overrule -g1 (it did until 2026-12-06: the unit tests' compile 287 s with it, 233 s without).
+  cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_DEBUG= \
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DAREAMATCH_BUILD_BENCHMARKS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF \
         -DAREAMATCH_SHARED_TESTS=OFF -DAREAMATCH_BUILD_PYTHON=OFF -DAREAMATCH_BUILD_FUZZERS=ON \
         -DAREAMATCH_BUILD_RESEARCH_TOOLS=OFF ${AREAMATCH_CMAKE_ARGS:-}
