@@ -268,30 +268,32 @@ TEST_CASE("the progress line: on a terminal or when asked, on stderr only, clear
   REQUIRE(run("generate " + dir + " --seed 9 --width 15 --height 11 --rotation 40").status == 0);
   const std::string match = " " + std::string(AREAMATCH_CLI) + " match " + dir + "/robot.yaml " + dir +
                             "/layout.yaml --source-resolution 0.08 --door-width 0.9 --estimate-scale --json";
-  // What one stream of a run holds: "out" (stderr dropped) or "err" (stdout dropped).
-  auto stream = [](const std::string& command, bool err) {
-    FILE* pipe = ::popen((command + (err ? " 2>&1 >/dev/null" : " 2>/dev/null")).c_str(), "r");
+  // A run's stderr, read through a pipe; its stdout goes to a file, read back into `out`.
+  const std::string out_file = dir + "/stdout.json";
+  auto run_streams = [&](const std::string& command, std::string& out) {
+    FILE* pipe = ::popen((command + " 2>&1 >" + out_file).c_str(), "r");
     REQUIRE(pipe != nullptr);
-    std::string text;
+    std::string err;
     char buffer[4096];
-    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) text.append(buffer, n);
+    while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) err.append(buffer, n);
     CHECK(::pclose(pipe) == 0);
-    return text;
+    out = read_text(out_file);
+    return err;
   };
   const std::string clear = "\r\033[K";
   // Asked for (AREAMATCH_PROGRESS=always draws from the start): the stages on stderr, the line
   // cleared before the program ends, the JSON on stdout untouched.
-  const std::string err = stream("AREAMATCH_PROGRESS=always" + match, true);
+  std::string out;
+  const std::string err = run_streams("AREAMATCH_PROGRESS=always" + match, out);
   INFO(err);
   CHECK(err.find(clear + "areamatch match: trying scales") != std::string::npos);
   CHECK(err.size() >= clear.size());
   CHECK(err.compare(err.size() - clear.size(), clear.size(), clear) == 0);
-  const std::string out = stream("AREAMATCH_PROGRESS=always" + match, false);
   CHECK(out.find('\r') == std::string::npos);
   CHECK(out.find("\"scale_estimated\": true") != std::string::npos);
   // Piped (as here) or told never: no line.
-  CHECK(stream(match, true).find('\r') == std::string::npos);
-  CHECK(stream("AREAMATCH_PROGRESS=never" + match, true).find('\r') == std::string::npos);
+  CHECK(run_streams(match, out).find('\r') == std::string::npos);
+  CHECK(run_streams("AREAMATCH_PROGRESS=never" + match, out).find('\r') == std::string::npos);
 }
 
 TEST_CASE("parameters and --set: one table of settings; a setting reaches the match; bad ones exit 2") {
