@@ -6,6 +6,7 @@
 
 #include "../area_graph.hpp"
 #include "../detail/disjoint_sets.hpp"
+#include "../detail/thinning.hpp"
 #include "../grid.hpp"
 #include "../match/verification/correspondence.hpp"
 #include "../match/verification/refine.hpp"
@@ -126,21 +127,21 @@ inline void fit_each_tile(const WallTiles& tiles, const BoundaryLookup& referenc
           // tiles that get here are cluttered ones, where no start fits); the best is then refined
           // on all of them.
           const bool sided = tiles.sides[i].size() == tiles.walls[i].size();
-          std::vector<Eigen::Vector2d> few, few_sides;
-          for (std::size_t k = 0; k < tiles.walls[i].size(); k += 4) {
-            few.push_back(tiles.walls[i][k]);
-            if (sided) few_sides.push_back(tiles.sides[i][k]);
-          }
-          Similarity2 best_start = fit[i];
+          const std::vector<Eigen::Vector2d> few = detail::every_kth(tiles.walls[i], 4);
+          const std::vector<Eigen::Vector2d> few_sides = sided ? detail::every_kth(tiles.sides[i], 4) : std::vector<Eigen::Vector2d>{};
+          Similarity2 best_start = start;
           double best_start_agreement = -1.0;
           for (const double turn : params.piece_retry_turns_rad) {
             Similarity2 about_centre;  // the start turned about the tile's middle
             about_centre.rotation = turn;
             about_centre.translation = c - Eigen::Rotation2Dd(turn) * c;
-            const Similarity2 own = refine_icp(few, reference, fit[i] * about_centre, params.piece_icp, sided ? &few_sides : nullptr);
+            const Similarity2 own = refine_icp(few, reference, start * about_centre, params.piece_icp, sided ? &few_sides : nullptr);
             const double agreement =
                 counts(own) ? boundary_inlier_fraction(few, reference, own, params.wall_tolerance_m) : -1.0;
-            if (agreement > best_start_agreement) best_start = own, best_start_agreement = agreement;
+            if (agreement > best_start_agreement) {
+              best_start = own;
+              best_start_agreement = agreement;
+            }
           }
           if (best_start_agreement >= params.piece_retry_min_wall_agreement) {
             const Similarity2 own = refine_icp(tiles.walls[i], reference, best_start, params.piece_icp, &tiles.sides[i]);

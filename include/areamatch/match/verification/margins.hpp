@@ -4,6 +4,7 @@
 /// (`MatchResult::margin_different`, `margin_mirrored`, `margin`) and its own quarter turns
 /// and mirror images (`MatchEvidence::turn_margin`).
 
+#include "../../detail/thinning.hpp"
 #include "../../transform.hpp"
 #include "../params.hpp"
 #include "../raster.hpp"

@@ -28,6 +28,7 @@
 #include "../../area_graph.hpp"
 #include "../../detail/format.hpp"
 #include "../../detail/parallel.hpp"
+#include "../../detail/thinning.hpp"
 #include "../../error.hpp"
 #include "../../transform.hpp"
 #include "../params.hpp"
@@ -96,16 +97,6 @@ struct is_selection<S, std::void_t<decltype(std::declval<const S&>().select(std:
     : std::is_convertible<decltype(std::declval<const S&>().select(std::declval<const SelectionInputs&>(),
                                                                    std::declval<MatchStatistics&>())),
                           Selected> {};
-
-/// Every k-th of `points`, k = max(1, size / about): about `about` of them (at most 2·about − 1),
-/// evenly spread, in order.
-inline std::vector<Eigen::Vector2d> evenly_thinned(const std::vector<Eigen::Vector2d>& points, std::size_t about) {
-  const std::size_t stride = std::max<std::size_t>(1, points.size() / about);
-  std::vector<Eigen::Vector2d> out;
-  out.reserve(points.size() / stride + 1);
-  for (std::size_t i = 0; i < points.size(); i += stride) out.push_back(points[i]);
-  return out;
-}
 
 /// The mean of a raster's labelled cell centres (the origin when it has none).
 inline Eigen::Vector2d centroid_of(const AreaRaster& raster) {
