@@ -38,6 +38,8 @@ void replay(const char* target) {
   REQUIRE_FALSE(files.empty());  // the seed corpus is part of the tree
   for (const auto& file : files) {
     INFO("input: ", file.string());
+    // Read here, not with detail::read_file_bytes: that refuses an empty file, and an empty input
+    // is a fuzz input like any other (libFuzzer saves one).
     std::ifstream in(file, std::ios::binary);
     const std::vector<char> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
     // Bad input may throw areamatch::error (caught inside the target); anything else escapes
