@@ -4,6 +4,7 @@
 #include <areamatch/detail/random.hpp>
 #include <areamatch/synthetic.hpp>
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -35,6 +36,37 @@ inline SyntheticCase synthetic_case(std::uint64_t seed) {
   c.building = areamatch::generate_building(b, seed);
   c.robot_params = r;
   c.robot = areamatch::make_robot_map(c.building, r, seed + 1000);
+  return c;
+}
+
+/// Pair `i` of `areamatch_assess_generated COUNT FIRST_SEED` (tools/assess_generated.cpp,
+/// docs/assessment.md): a building of 30-50 x 20-26 m and its robot map turned, noisy (3 cm),
+/// cluttered, speckled, bent by 0.2-1.0 m and broken `i % 4` times.
+struct DistortedCase {
+  areamatch::BuildingParams building_params;
+  areamatch::SyntheticBuilding building;
+  areamatch::RobotMapParams robot_params;
+  areamatch::RobotMap robot;
+};
+
+inline DistortedCase distorted_case(std::uint64_t first_seed, int i) {
+  const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
+  DistortedCase c;
+  c.building_params.width_m = 30.0 + 4.0 * (i % 6);
+  c.building_params.height_m = 20.0 + 2.0 * (i % 4);
+  c.building = areamatch::generate_building(c.building_params, seed);
+  areamatch::RobotMapParams& rp = c.robot_params;
+  rp.rotation_rad = (37.0 + 53.0 * i) * areamatch::pi / 180.0;
+  rp.wall_noise_m = 0.03;
+  rp.max_clutter_per_room = 3;
+  rp.speckle_per_m2 = 0.02;
+  rp.wall_bend_m = 0.2 + 0.2 * (i % 5);
+  // Building-wide drift: the sines' wavelength four times the building's longer side, so that a
+  // bend of 1 m turns the map by about 2 degrees from one end to the other (shorter ones make a
+  // wavy map, strained by 10 % and more, that no set of rigid pieces explains).
+  rp.bend_wavelength_m = 4.0 * std::max(c.building_params.width_m, c.building_params.height_m);
+  rp.break_count = i % 4;
+  c.robot = areamatch::make_robot_map(c.building, rp, seed);
   return c;
 }
 

@@ -4,6 +4,7 @@
 #include <areamatch/synthetic.hpp>
 #include <areamatch/io/json.hpp>
 #include <doctest/doctest.h>
+#include "synthetic_cases.hpp"
 #include "test_support.hpp"
 
 #include <algorithm>
@@ -116,6 +117,26 @@ TEST_CASE("breaks that add up are not merged into one piece") {
   double widest = 0.0;
   for (const RigidPiece& piece : a.brokenness.pieces) widest = std::max(widest, std::abs(piece.rotation_rad));
   CHECK(widest > 10.0 * pi / 180.0);  // a piece beyond the first cut is found
+}
+
+TEST_CASE("tiles whose fits scatter gather into their piece instead of joining the large one next door") {
+  // In-sample regression pin: pair 15 of `areamatch_assess_generated 60 6300`, a map broken three
+  // times under a 0.2 m bend. Its tiles' own fits scatter by a degree or so, so
+  // one piece's tiles formed groups too small to count, and each joined the large piece next door:
+  // 3 pieces found before 2026-12-07, the true 4 since small groups gather first.
+  const areamatch_test::DistortedCase pair = areamatch_test::distorted_case(6300, 15);
+  const RobotMap& robot = pair.robot;
+  const SyntheticBuilding& building = pair.building;
+  REQUIRE(robot.breaks.size() == 3);
+  const Matcher<> matcher;
+  const AreaGraph map_graph = matcher.segmenter.segment(robot.grid);
+  const AreaGraph reference_graph = matcher.segmenter.segment(building.layout);
+  const MatchResult match = matcher.match(robot.grid, map_graph, building.layout, reference_graph);
+  AssessParams params;
+  params.assume_same_building = true;
+  const MapAssessment a = assess_match(robot.grid, map_graph, building.layout, reference_graph, match, params);
+  REQUIRE(a.ok);
+  CHECK(a.brokenness.pieces.size() == 4);
 }
 
 TEST_CASE("the generator's broken pieces: truth and random stream") {

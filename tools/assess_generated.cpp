@@ -10,6 +10,7 @@
 // One tab-separated line per pair, then a summary.
 #include <areamatch/areamatch.hpp>
 #include <areamatch/synthetic.hpp>
+#include <synthetic_cases.hpp>
 
 #include <algorithm>
 #include <cmath>
@@ -100,22 +101,10 @@ int main(int argc, char** argv) {
   std::vector<double> strong_med, strong_p95, warp_times, match_times;
   for (int i = 0; i < count; ++i) {
     const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
-    areamatch::BuildingParams bp;
-    bp.width_m = 30.0 + 4.0 * (i % 6);
-    bp.height_m = 20.0 + 2.0 * (i % 4);
-    const auto building = areamatch::generate_building(bp, seed);
-    areamatch::RobotMapParams rp;
-    rp.rotation_rad = (37.0 + 53.0 * i) * pi / 180.0;
-    rp.wall_noise_m = 0.03;
-    rp.max_clutter_per_room = 3;
-    rp.speckle_per_m2 = 0.02;
-    rp.wall_bend_m = 0.2 + 0.2 * (i % 5);
-    // Building-wide drift: the sines' wavelength four times the building's longer side, so that a
-    // bend of 1 m turns the map by about 2 degrees from one end to the other (shorter ones make a
-    // wavy map, strained by 10 % and more, that no set of rigid pieces explains).
-    rp.bend_wavelength_m = 4.0 * std::max(bp.width_m, bp.height_m);
-    rp.break_count = i % 4;
-    const auto robot = areamatch::make_robot_map(building, rp, seed);
+    const areamatch_test::DistortedCase pair = areamatch_test::distorted_case(first_seed, i);
+    const auto& building = pair.building;
+    const auto& rp = pair.robot_params;
+    const auto& robot = pair.robot;
     const auto map_graph = matcher.segmenter.segment(robot.grid);
     const auto reference_graph = matcher.segmenter.segment(building.layout);
     const auto result = matcher.match(robot.grid, map_graph, building.layout, reference_graph);

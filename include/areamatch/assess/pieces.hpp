@@ -15,8 +15,10 @@
 /// their fits agree: within `piece_rotation_tolerance_rad`, and within `piece_shift_tolerance_m`
 /// at their common side. A smooth bend (SLAM drift) turns little from one tile to the next and
 /// stays one piece however far it bends in all; a failed loop closure turns everything beyond it
-/// at once. Pieces with fewer than `piece_min_points` wall points and tiles too bare to fit join
-/// the neighbouring piece that lays their walls best. Each piece is then fitted on all its walls,
+/// at once. The fitted tiles of a group with fewer than `piece_min_points` wall points first join
+/// the fitted neighbour whose fit lays their walls best (tile fits scatter, and a piece's tiles
+/// gather that way); groups still that small and tiles too bare to fit join the neighbouring piece
+/// that lays their walls best. Each piece is then fitted on all its walls,
 /// neighbouring pieces whose own fits agree after all are joined, and each area goes to the piece
 /// holding most of its walls.
 

@@ -168,8 +168,9 @@ inline void fit_each_tile(const WallTiles& tiles, const BoundaryLookup& referenc
 }
 
 /// Per tile, the root tile of its group: fitted neighbours whose fits agree at their common side
-/// are one group; groups with enough wall points keep their tiles, the rest join the neighbouring
-/// group laying their walls best (tiles no group reaches: the first).
+/// are one group; the fitted tiles of a group with too few wall points join the fitted neighbour
+/// whose fit lays their walls best; groups with enough wall points then keep their tiles, the rest
+/// join the neighbouring group laying their walls best (tiles no group reaches: the first).
 inline std::vector<int> group_tiles(const WallTiles& tiles, const BoundaryLookup& reference, const AssessParams& params,
                                     const std::vector<Similarity2>& fit, const std::vector<char>& fitted) {
   const std::size_t n = tiles.size();
@@ -181,9 +182,33 @@ inline std::vector<int> group_tiles(const WallTiles& tiles, const BoundaryLookup
       }
     }
   }
-  std::vector<std::size_t> set_points(n, 0);
+  std::vector<std::size_t> set_points(n, 0);  // per group root
   for (std::size_t t = 0; t < n; ++t) {
     if (fitted[t]) set_points[sets.find(t)] += tiles.walls[t].size();
+  }
+  // Fitted tiles of a small group join the fitted neighbour (of another group) whose fit lays
+  // their walls best, whether its group is small or large: tile fits scatter by a degree or so (a
+  // cluttered or bent map's), so the tiles of a piece beyond a break can fall into groups of one or
+  // two tiles each; laid best by each other's fits they gather into their piece, where joining the
+  // large group next door one by one would hide the break.
+  for (bool joined = true; joined;) {
+    joined = false;
+    for (std::size_t t = 0; t < n; ++t) {
+      if (!fitted[t] || set_points[sets.find(t)] >= params.piece_min_points) continue;
+      std::size_t best = t;
+      double best_agreement = -1.0;
+      for (const std::size_t u : tiles.neighbours(t)) {
+        if (!fitted[u] || sets.find(u) == sets.find(t)) continue;
+        const double a = tiles.agreement(t, fit[u], reference, params);
+        if (a > best_agreement) best = u, best_agreement = a;
+      }
+      if (best != t) {
+        const std::size_t a = sets.find(t), b = sets.find(best);
+        sets.join(a, b);
+        set_points[sets.find(a)] = set_points[a] + set_points[b];
+        joined = true;
+      }
+    }
   }
   std::vector<int> root(n, -1);
   for (std::size_t t = 0; t < n; ++t) {
