@@ -67,7 +67,7 @@ if [ "$mode" = sanitize ]; then
   cmake -S . -B "$build_dir" -DCMAKE_BUILD_TYPE=Debug -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_CXX_FLAGS="$flags" -DCMAKE_CXX_FLAGS_DEBUG= \
         -DCMAKE_EXE_LINKER_FLAGS="-fsanitize=address,undefined" -DAREAMATCH_BUILD_BENCHMARKS=OFF -DAREAMATCH_BUILD_EXAMPLES=OFF \
         -DAREAMATCH_SHARED_TESTS=OFF -DAREAMATCH_BUILD_PYTHON=OFF -DAREAMATCH_BUILD_FUZZERS=ON \
-        -DAREAMATCH_BUILD_RESEARCH_TOOLS=OFF ${AREAMATCH_CMAKE_ARGS:-}
+        -DAREAMATCH_BUILD_RESEARCH_TOOLS=OFF -DAREAMATCH_STOCK_VORONOI_TEST=OFF ${AREAMATCH_CMAKE_ARGS:-}
 else
   # The Python module is built for Debian's interpreter, the one the python3-* packages above
   # serve (another python3 may come first on PATH, e.g. pyenv's, without numpy or pytest).

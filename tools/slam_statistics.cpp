@@ -13,7 +13,7 @@
 //                    artefacts: what a plan does not have)
 //   plan_on_map      share of the plan's walls (non-free cells next to free) near the map's free
 //                    space that lie within 0.15 m of the map's occupied cells
-#include <areamatch/io.hpp>
+#include <areamatch/io/map_files.hpp>
 #include <eval/manifest.hpp>
 
 #include <cmath>
