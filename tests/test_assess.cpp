@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 #include <vector>
 
 using namespace areamatch;
@@ -22,14 +23,20 @@ struct AssessCase {
   MatchResult match;
 };
 
-AssessCase assess_case(std::uint64_t seed, const RobotMapParams& rp) {
-  AssessCase c{generate_building({}, seed), {}, {}, {}, {}};
-  c.robot = make_robot_map(c.building, rp, seed + 1);
+/// A building and its robot map, each segmented, the map matched onto the building's layout.
+AssessCase assess_case(SyntheticBuilding building, RobotMap robot) {
+  AssessCase c{std::move(building), std::move(robot), {}, {}, {}};
   const Matcher<> matcher;
   c.map_graph = matcher.segmenter.segment(c.robot.grid);
   c.reference_graph = matcher.segmenter.segment(c.building.layout);
   c.match = matcher.match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph);
   return c;
+}
+
+AssessCase assess_case(std::uint64_t seed, const RobotMapParams& rp) {
+  SyntheticBuilding building = generate_building({}, seed);
+  RobotMap robot = make_robot_map(building, rp, seed + 1);
+  return assess_case(std::move(building), std::move(robot));
 }
 
 RobotMapParams plain_robot(double rotation_rad) {
@@ -124,17 +131,12 @@ TEST_CASE("tiles whose fits scatter gather into their piece instead of joining t
   // times under a 0.2 m bend. Its tiles' own fits scatter by a degree or so, so
   // one piece's tiles formed groups too small to count, and each joined the large piece next door:
   // 3 pieces found before 2026-12-07, the true 4 since small groups gather first.
-  const areamatch_test::DistortedCase pair = areamatch_test::distorted_case(6300, 15);
-  const RobotMap& robot = pair.robot;
-  const SyntheticBuilding& building = pair.building;
-  REQUIRE(robot.breaks.size() == 3);
-  const Matcher<> matcher;
-  const AreaGraph map_graph = matcher.segmenter.segment(robot.grid);
-  const AreaGraph reference_graph = matcher.segmenter.segment(building.layout);
-  const MatchResult match = matcher.match(robot.grid, map_graph, building.layout, reference_graph);
+  areamatch_test::DistortedCase pair = areamatch_test::distorted_case(6300, 15);
+  const AssessCase c = assess_case(std::move(pair.building), std::move(pair.robot));
+  REQUIRE(c.robot.breaks.size() == 3);
   AssessParams params;
   params.assume_same_building = true;
-  const MapAssessment a = assess_match(robot.grid, map_graph, building.layout, reference_graph, match, params);
+  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
   REQUIRE(a.ok);
   CHECK(a.brokenness.pieces.size() == 4);
 }

@@ -2,7 +2,7 @@
 /// \file io/map_files.hpp
 /// Loading and saving occupancy grids: PGM, PNG and ROS map_server YAML. `<areamatch/io.hpp>`
 /// includes it with the JSON and SVG writers; a program that only reads and writes maps includes
-/// this alone (a fifth of the compile: the writers pull in every result type).
+/// this alone (under a third of the compile: the writers pull in every result type).
 
 #include "../detail/file.hpp"
 #include "../error.hpp"
