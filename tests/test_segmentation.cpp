@@ -3,6 +3,7 @@
 #include <areamatch/areamatch.hpp>
 #include <areamatch/synthetic.hpp>
 #include <areamatch/detail/random.hpp>
+#include <areamatch/detail/compact_voronoi.hpp>
 #include <areamatch/detail/voronoi_circles.hpp>
 #include <areamatch/segmentation_score.hpp>
 
@@ -343,6 +344,72 @@ TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram")
     CHECK(ours.vertices().size() == theirs.vertices().size());
     CHECK(edges_of(ours) == edges_of(theirs));
   }
+}
+
+TEST_CASE("the compact Voronoi diagram holds Boost's diagram: the same vertices and edges, in order") {
+  // detail::CompactVoronoi merges the ends of degenerate edges in a union-find where Boost walks
+  // around the vertex; both are filled by the same builder here, so every number is equal.
+  using Diagram = boost::polygon::voronoi_diagram<double>;
+  std::size_t removed = 0, edges = 0;
+  auto compare = [&](const BoundarySegments& boundary) {
+    Diagram theirs;
+    detail::CompactVoronoi ours;
+    detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &theirs);
+    detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &ours);
+    removed += ours.removed_edges();
+    edges += ours.edges().size();
+    REQUIRE(ours.vertices().size() == theirs.vertices().size());
+    for (std::size_t i = 0; i < ours.vertices().size(); ++i) {
+      CHECK(ours.vertices()[i].x == theirs.vertices()[i].x());
+      CHECK(ours.vertices()[i].y == theirs.vertices()[i].y());
+    }
+    REQUIRE(2 * ours.edges().size() == theirs.edges().size());
+    const auto* first_vertex = theirs.vertices().data();
+    auto index_of = [&](const Diagram::vertex_type* v) {
+      return v ? static_cast<std::uint32_t>(v - first_vertex) : detail::CompactVoronoi::no_vertex;
+    };
+    for (std::size_t i = 0; i < ours.edges().size(); ++i) {
+      const detail::CompactVoronoi::Edge& e = ours.edges()[i];
+      const Diagram::edge_type& half = theirs.edges()[2 * i];
+      REQUIRE(half.twin() == &theirs.edges()[2 * i + 1]);
+      CHECK(e.vertex[0] == index_of(half.vertex0()));
+      CHECK(e.vertex[1] == index_of(half.vertex1()));
+      CHECK(e.primary == half.is_primary());
+      CHECK(e.linear == half.is_linear());
+      for (int side = 0; side < 2; ++side) {
+        const Diagram::cell_type& cell = *theirs.edges()[2 * i + side].cell();
+        const detail::CompactVoronoi::Site& site = ours.sites()[e.site[side]];
+        CHECK(site.source_index == cell.source_index());
+        CHECK(site.category == cell.source_category());
+        CHECK(site.contains_point() == cell.contains_point());
+      }
+    }
+  };
+  detail::Random random(7);
+  for (int trial = 0; trial < 20; ++trial) {  // random rooms with blobs, simplified or not
+    std::vector<std::string> rows(60, std::string(80, '.'));
+    for (int c = 0; c < 80; ++c) rows[0][c] = rows[59][c] = '#';
+    for (int r = 0; r < 60; ++r) rows[r][0] = rows[r][79] = '#';
+    for (int k = random.integer(5, 40); k > 0; --k) {
+      const int r = random.integer(1, 55), c = random.integer(1, 75), h = random.integer(1, 4), w = random.integer(1, 4);
+      for (int dr = 0; dr < h; ++dr)
+        for (int dc = 0; dc < w; ++dc) rows[r + dr][c + dc] = '#';
+    }
+    const OccupancyGrid g = grid_from_text(rows, 0.05);
+    BoundaryParams params;
+    params.simplify_tolerance_m = trial % 2 == 0 ? 0.0 : 0.1;
+    compare(trace_boundary(binarize(g), g.resolution(), params));
+  }
+  for (std::uint64_t seed = 1; seed <= 3; ++seed) {  // turned, noisy, cluttered robot maps
+    RobotMapParams rp;
+    rp.rotation_rad = 0.41 * static_cast<double>(seed);
+    rp.wall_noise_m = 0.03;
+    rp.max_clutter_per_room = 3;
+    const auto robot = make_robot_map(generate_building(BuildingParams{}, seed), rp, seed);
+    compare(trace_boundary(binarize(robot.grid), robot.grid.resolution(), BoundaryParams{}));
+  }
+  MESSAGE(edges << " edges compared, " << removed << " removed for coinciding ends");
+  CHECK(removed > 0);  // the merge of coinciding ends was exercised
 }
 
 TEST_CASE("segmentation is the same with Boost's stock Voronoi builder") {
