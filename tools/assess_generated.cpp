@@ -5,7 +5,8 @@
 //   warp error   the distance of the map's wall points from where they truly belong, under the
 //                rigid answer and under the warp (median, 95th percentile)
 //   pieces       the broken pieces found against the true count (pieces holding ≥ 15 m² of the
-//                map's free space), each found piece's turn against its true piece's
+//                map's free space), each found piece's turn against its true piece's (the true
+//                piece told by the found one's areas, and by its free cells)
 //   coverage     the share of the layout's rooms and corridors explored, against the truth
 // One tab-separated line per pair, then a summary.
 #include <areamatch/areamatch.hpp>
@@ -30,6 +31,31 @@ double percentile(std::vector<double> v, double q) {
   return v[std::min(v.size() - 1, static_cast<std::size_t>(q * static_cast<double>(v.size())))];
 }
 
+/// The key with the most votes (the smallest such key).
+int most_voted(const std::map<int, double>& votes) {
+  int best = 0;
+  double most = -1.0;
+  for (const auto& [key, n] : votes) {
+    if (n > most) best = key, most = n;
+  }
+  return best;
+}
+
+/// The rotation of the least-squares rigid fit taking `from` onto `to` (2D Procrustes).
+double fitted_rotation(const std::vector<Eigen::Vector2d>& from, const std::vector<Eigen::Vector2d>& to) {
+  Eigen::Vector2d mean_from = Eigen::Vector2d::Zero(), mean_to = Eigen::Vector2d::Zero();
+  for (std::size_t i = 0; i < from.size(); ++i) mean_from += from[i], mean_to += to[i];
+  mean_from /= static_cast<double>(from.size());
+  mean_to /= static_cast<double>(to.size());
+  double cross = 0.0, dot = 0.0;
+  for (std::size_t i = 0; i < from.size(); ++i) {
+    const Eigen::Vector2d a = from[i] - mean_from, b = to[i] - mean_to;
+    cross += a.x() * b.y() - a.y() * b.x();
+    dot += a.dot(b);
+  }
+  return std::atan2(cross, dot);
+}
+
 struct PairTruth {
   int pieces = 1;
   double coverage = 0.0;
@@ -41,7 +67,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
   PairTruth t;
   const auto& grid = robot.grid;
   std::map<int, double> piece_m2;
-  std::vector<std::map<int, int>> votes(map_graph.areas.size());
+  std::vector<std::map<int, double>> votes(map_graph.areas.size());
   std::vector<char> seen(reference_raster.centres.size(), 0);
   const double cell_m2 = grid.resolution() * grid.resolution();
   for (int row = 0; row < grid.height(); ++row) {
@@ -53,7 +79,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
       const int label = map_graph.labels[grid.index(col, row)];
       if (label >= 0) {
         piece_m2[piece] += cell_m2;
-        ++votes[static_cast<std::size_t>(label)][piece];
+        votes[static_cast<std::size_t>(label)][piece] += 1.0;
       }
     }
   }
@@ -77,13 +103,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
   std::size_t explored = 0;
   for (const char v : seen) explored += v != 0;
   t.coverage = static_cast<double>(explored) / static_cast<double>(std::max<std::size_t>(1, reference_raster.labelled_count()));
-  for (const auto& v : votes) {
-    int best = 0, most = -1;
-    for (const auto& [piece, n] : v) {
-      if (n > most) best = piece, most = n;
-    }
-    t.piece_of_area.push_back(best);
-  }
+  for (const auto& v : votes) t.piece_of_area.push_back(most_voted(v));
   return t;
 }
 
@@ -95,9 +115,9 @@ int main(int argc, char** argv) {
   areamatch::Matcher<> matcher;
   areamatch::AssessParams params;
   params.assume_same_building = true;  // the generated map is of the layout's building
-  std::printf("seed\tbend_m\tbreaks\tok\trigid_med\trigid_p95\twarp_med\twarp_p95\ttrue_pieces\tfound_pieces\tmax_turn_err_deg\t"
+  std::printf("seed\tbend_m\tbreaks\tok\trigid_med\trigid_p95\twarp_med\twarp_p95\ttrue_pieces\tfound_pieces\tmax_turn_err_deg\tmax_turn_err_cells_deg\tmax_turn_err_fitted_deg\t"
               "true_cov\tcov\tassess_s\tmatch_s\n");
-  int placed = 0, strong = 0, strong_ok = 0, pieces_exact = 0, turns_ok = 0, coverage_ok = 0;
+  int placed = 0, strong = 0, strong_ok = 0, pieces_exact = 0, turns_ok = 0, turns_by_cells_ok = 0, turns_fitted_ok = 0, coverage_ok = 0;
   std::vector<double> strong_med, strong_p95, warp_times, match_times;
   for (int i = 0; i < count; ++i) {
     const std::uint64_t seed = first_seed + static_cast<std::uint64_t>(i);
@@ -111,17 +131,29 @@ int main(int argc, char** argv) {
     const auto a = areamatch::assess_match(robot.grid, map_graph, building.layout, reference_graph, result, params);
     const auto reference_raster = areamatch::make_area_raster(reference_graph, params.sample_cell_m);
     const PairTruth truth = truth_of(robot, map_graph, reference_raster, 15.0);
-    double rigid_med = std::nan(""), rigid_p95 = std::nan(""), warp_med = std::nan(""), warp_p95 = std::nan(""), max_turn = std::nan("");
+    double rigid_med = std::nan(""), rigid_p95 = std::nan(""), warp_med = std::nan(""), warp_p95 = std::nan(""), max_turn = std::nan(""),
+           max_turn_cells = std::nan(""), max_turn_fitted = std::nan("");
     const std::size_t found = a.ok ? a.brokenness.pieces.size() : 0;
+    const std::vector<Eigen::Vector2d> wall_points = areamatch::detail::wall_points(robot.grid, 0.1);
+    std::map<int, double> true_turn;  // per true piece: its rigid turn, with the bend
     if (a.ok) {
       ++placed;
       std::vector<double> rigid, warped;
-      for (const auto& p : areamatch::detail::wall_points(robot.grid, 0.1)) {
+      for (const auto& p : wall_points) {
         const Eigen::Vector2d truth_point = robot.true_dest(p);
         rigid.push_back((result.T_dest_source * p - truth_point).norm());
         warped.push_back((a.warp.field.apply(p) - truth_point).norm());
       }
       rigid_med = percentile(rigid, 0.5), rigid_p95 = percentile(rigid, 0.95);
+      // Each true piece's own rigid turn: the least-squares fit of where its wall points truly
+      // belong (its break's motion and the bend across it, which turns a bent piece too).
+      std::map<int, std::pair<std::vector<Eigen::Vector2d>, std::vector<Eigen::Vector2d>>> piece_walls;
+      for (const auto& p : wall_points) {
+        auto& [from, to] = piece_walls[robot.piece_at(robot.smooth(robot.T_dest_source * p))];
+        from.push_back(p);
+        to.push_back(robot.true_dest(p));
+      }
+      for (const auto& [piece, walls] : piece_walls) true_turn[piece] = fitted_rotation(walls.first, walls.second);
       warp_med = percentile(warped, 0.5), warp_p95 = percentile(warped, 0.95);
       if (rigid_med >= 0.3) {
         ++strong;
@@ -129,36 +161,54 @@ int main(int argc, char** argv) {
         strong_p95.push_back(warp_p95);
         strong_ok += warp_med <= 0.05 && warp_p95 <= 0.15;
       }
-      // Each found piece's turn against the main one, next to its true piece's against the main's true piece.
+      // Each found piece's turn against the main one, next to its true piece's against the main's
+      // true piece. Which true piece a found one is: the one holding most of its areas' m² (an area
+      // across a cut counts whole), and the one holding most of its free cells (finer).
       const auto& pieces = a.brokenness.pieces;
-      auto true_piece = [&](const areamatch::RigidPiece& piece) {
+      auto true_by_areas = [&](std::size_t k) {
         std::map<int, double> m2;
-        for (int area : piece.areas) {
+        for (int area : pieces[k].areas) {
           m2[truth.piece_of_area[static_cast<std::size_t>(area)]] += map_graph.areas[static_cast<std::size_t>(area)].size_m2;
         }
-        int best = 0;
-        double most = -1.0;
-        for (const auto& [k, v] : m2) {
-          if (v > most) best = k, most = v;
-        }
-        return best;
+        return most_voted(m2);
       };
-      const int main_truth = true_piece(pieces.front());
-      max_turn = 0.0;
-      for (std::size_t k = 1; k < pieces.size(); ++k) {
-        const double truth_turn = areamatch::wrap_angle(robot.piece_motion(true_piece(pieces[k])).rotation -
-                                                        robot.piece_motion(main_truth).rotation);
-        max_turn = std::max(max_turn, std::abs(areamatch::wrap_angle(pieces[k].rotation_rad - truth_turn)) * 180.0 / pi);
+      std::vector<std::map<int, double>> cell_votes(pieces.size());
+      for (int row = 0; row < robot.grid.height(); ++row) {
+        for (int col = 0; col < robot.grid.width(); ++col) {
+          if (robot.grid.at(col, row) != areamatch::CellState::free || map_graph.labels[robot.grid.index(col, row)] < 0) continue;
+          const Eigen::Vector2d s = robot.grid.cell_center(col, row);
+          const int found_piece = a.brokenness.piece_at(s);
+          cell_votes[static_cast<std::size_t>(found_piece)][robot.piece_at(robot.smooth(robot.T_dest_source * s))] += 1.0;
+        }
       }
+      auto true_by_cells = [&](std::size_t k) { return most_voted(cell_votes[k]); };
+      auto max_turn_error = [&](const auto& true_piece) {
+        double worst = 0.0;
+        for (std::size_t k = 1; k < pieces.size(); ++k) {
+          const double truth_turn = areamatch::wrap_angle(robot.piece_motion(true_piece(k)).rotation -
+                                                          robot.piece_motion(true_piece(0)).rotation);
+          worst = std::max(worst, std::abs(areamatch::wrap_angle(pieces[k].rotation_rad - truth_turn)) * 180.0 / pi);
+        }
+        return worst;
+      };
+      max_turn_fitted = 0.0;
+      max_turn = max_turn_error(true_by_areas);
+      max_turn_cells = max_turn_error(true_by_cells);
+      turns_by_cells_ok += static_cast<int>(found) == truth.pieces && max_turn_cells <= 0.5;
+      for (std::size_t k = 1; k < pieces.size(); ++k) {  // against the true pieces' own rigid turns
+        const double truth_turn = areamatch::wrap_angle(true_turn[true_by_cells(k)] - true_turn[true_by_cells(0)]);
+        max_turn_fitted = std::max(max_turn_fitted, std::abs(areamatch::wrap_angle(pieces[k].rotation_rad - truth_turn)) * 180.0 / pi);
+      }
+      turns_fitted_ok += static_cast<int>(found) == truth.pieces && max_turn_fitted <= 0.5;
       pieces_exact += static_cast<int>(found) == truth.pieces;
       turns_ok += static_cast<int>(found) == truth.pieces && max_turn <= 0.5;
       coverage_ok += std::abs(a.coverage.explored_share - truth.coverage) <= 0.02;
       warp_times.push_back(a.timings.warp_s + a.timings.assess_s);
       match_times.push_back(result.timings.total_s);
     }
-    std::printf("%llu\t%.1f\t%d\t%d\t%.3f\t%.3f\t%.3f\t%.3f\t%d\t%zu\t%.2f\t%.3f\t%.3f\t%.3f\t%.3f\n",
+    std::printf("%llu\t%.1f\t%d\t%d\t%.3f\t%.3f\t%.3f\t%.3f\t%d\t%zu\t%.2f\t%.2f\t%.2f\t%.3f\t%.3f\t%.3f\t%.3f\n",
                 static_cast<unsigned long long>(seed), rp.wall_bend_m, rp.break_count, a.ok ? 1 : 0, rigid_med, rigid_p95,
-                warp_med, warp_p95, truth.pieces, found, max_turn, truth.coverage, a.ok ? a.coverage.explored_share : std::nan(""),
+                warp_med, warp_p95, truth.pieces, found, max_turn, max_turn_cells, max_turn_fitted, truth.coverage, a.ok ? a.coverage.explored_share : std::nan(""),
                 a.timings.warp_s + a.timings.assess_s, result.timings.total_s);
     std::fflush(stdout);
   }
@@ -166,8 +216,9 @@ int main(int argc, char** argv) {
   std::printf("warp error where the rigid median >= 0.3 m: %d pairs; median of medians %.3f m, median of 95th percentiles %.3f m; "
               "%d pairs with median <= 0.05 and 95th <= 0.15\n",
               strong, percentile(strong_med, 0.5), percentile(strong_p95, 0.5), strong_ok);
-  std::printf("broken pieces counted exactly: %d of %d placed; and every piece's turn within 0.5 deg: %d\n", pieces_exact, placed,
-              turns_ok);
+  std::printf("broken pieces counted exactly: %d of %d placed; and every piece's turn within 0.5 deg: %d (pieces told by their areas), "
+              "%d (by their cells), %d (by their cells, against each true piece's rigid fit with the bend)\n",
+              pieces_exact, placed, turns_ok, turns_by_cells_ok, turns_fitted_ok);
   std::printf("coverage within 2 points of the truth: %d of %d placed\n", coverage_ok, placed);
   std::printf("median time: match %.3f s, warp + assessment %.3f s\n", percentile(match_times, 0.5), percentile(warp_times, 0.5));
   return 0;
