@@ -306,6 +306,23 @@ TEST_CASE("general circle events agree with Boost's own (exact when needed) on r
 }
 #endif  // AREAMATCH_FAST_VORONOI_CIRCLES
 
+namespace {
+
+/// A 4 x 3 m walled room with 5–40 random blocks in it: wall outlines for the Voronoi builder.
+OccupancyGrid random_blob_room(detail::Random& random) {
+  std::vector<std::string> rows(60, std::string(80, '.'));
+  for (int c = 0; c < 80; ++c) rows[0][c] = rows[59][c] = '#';
+  for (int r = 0; r < 60; ++r) rows[r][0] = rows[r][79] = '#';
+  for (int k = random.integer(5, 40); k > 0; --k) {
+    const int r = random.integer(1, 55), c = random.integer(1, 75), h = random.integer(1, 4), w = random.integer(1, 4);
+    for (int dr = 0; dr < h; ++dr)
+      for (int dc = 0; dc < w; ++dc) rows[r + dr][c + dc] = '#';
+  }
+  return grid_from_text(rows, 0.05);
+}
+
+}  // namespace
+
 TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram") {
   // The same edges as boost::polygon::construct_voronoi on wall outlines (random rooms with
   // blobs): each edge as its two sites and its end points to a micro-cell. The order may differ
@@ -325,15 +342,7 @@ TEST_CASE("the Voronoi builder with corner circle events gives Boost's diagram")
   };
   detail::Random random(31);
   for (int trial = 0; trial < 30; ++trial) {
-    std::vector<std::string> rows(60, std::string(80, '.'));
-    for (int c = 0; c < 80; ++c) rows[0][c] = rows[59][c] = '#';
-    for (int r = 0; r < 60; ++r) rows[r][0] = rows[r][79] = '#';
-    for (int k = random.integer(5, 40); k > 0; --k) {
-      const int r = random.integer(1, 55), c = random.integer(1, 75), h = random.integer(1, 4), w = random.integer(1, 4);
-      for (int dr = 0; dr < h; ++dr)
-        for (int dc = 0; dc < w; ++dc) rows[r + dr][c + dc] = '#';
-    }
-    const OccupancyGrid g = grid_from_text(rows, 0.05);
+    const OccupancyGrid g = random_blob_room(random);
     BoundaryParams params;
     params.simplify_tolerance_m = trial % 3 == 0 ? 0.0 : 0.1;
     const BoundarySegments boundary = trace_boundary(binarize(g), g.resolution(), params);
@@ -387,15 +396,7 @@ TEST_CASE("the compact Voronoi diagram holds Boost's diagram: the same vertices 
   };
   detail::Random random(7);
   for (int trial = 0; trial < 20; ++trial) {  // random rooms with blobs, simplified or not
-    std::vector<std::string> rows(60, std::string(80, '.'));
-    for (int c = 0; c < 80; ++c) rows[0][c] = rows[59][c] = '#';
-    for (int r = 0; r < 60; ++r) rows[r][0] = rows[r][79] = '#';
-    for (int k = random.integer(5, 40); k > 0; --k) {
-      const int r = random.integer(1, 55), c = random.integer(1, 75), h = random.integer(1, 4), w = random.integer(1, 4);
-      for (int dr = 0; dr < h; ++dr)
-        for (int dc = 0; dc < w; ++dc) rows[r + dr][c + dc] = '#';
-    }
-    const OccupancyGrid g = grid_from_text(rows, 0.05);
+    const OccupancyGrid g = random_blob_room(random);
     BoundaryParams params;
     params.simplify_tolerance_m = trial % 2 == 0 ? 0.0 : 0.1;
     compare(trace_boundary(binarize(g), g.resolution(), params));
