@@ -4,7 +4,7 @@
 // rasters) one after another; with 4 KB pages each page is a fault, and under a hypervisor a
 // costly one: on the 240 x 160 m generated floor a third of `areamatch match`'s time was page
 // faults and the zeroing they bring. Where the kernel gives huge pages only on request
-// (/sys/kernel/mm/transparent_hugepage/enabled = madvise, Debian's default), the 2 MB-aligned
+// (/sys/kernel/mm/transparent_hugepage/enabled = madvise, as on the machine measured), the 2 MB-aligned
 // middle of every allocation of at least a huge page (2 MB) is marked MADV_HUGEPAGE before it is
 // touched. Answers do not change; only how memory is mapped. docs/performance.md has the
 // measurements, and how a program of one's own gets the same (glibc's `glibc.malloc.hugetlb=1`).

@@ -5,7 +5,7 @@
 /// `boost::polygon::voronoi_diagram` keeps a full half-edge structure (cell, vertex, twin, next,
 /// prev and a colour per half-edge: 96 bytes an edge) and reserves room for six half-edges per
 /// input site before duplicates are removed: about 120 MB for the 106 000 wall segments of a
-/// 240 × 160 m floor, the largest piece of a large map's peak memory. The skeleton reads each
+/// 240 × 160 m floor, the largest piece of the heap while it was built. The skeleton reads each
 /// edge's two sites, its two end vertices (by index and position), and whether it is primary and
 /// curved; nothing walks around cells or vertices. This diagram keeps just that: 20 bytes an
 /// edge, 16 a vertex, 8 a site.
