@@ -6,7 +6,8 @@
 //                rigid answer and under the warp (median, 95th percentile)
 //   pieces       the broken pieces found against the true count (pieces holding ≥ 15 m² of the
 //                map's free space), each found piece's turn against its true piece's (the true
-//                piece told by the found one's areas, and by its free cells)
+//                piece told by the found one's areas, and by its free cells; the true turn its
+//                break's, and the least-squares rigid fit of where its walls truly go, bend and all)
 //   coverage     the share of the layout's rooms and corridors explored, against the truth
 // One tab-separated line per pair, then a summary.
 #include <areamatch/areamatch.hpp>
@@ -147,6 +148,7 @@ int main(int argc, char** argv) {
       rigid_med = percentile(rigid, 0.5), rigid_p95 = percentile(rigid, 0.95);
       // Each true piece's own rigid turn: the least-squares fit of where its wall points truly
       // belong (its break's motion and the bend across it, which turns a bent piece too).
+      for (int k = 0; k <= static_cast<int>(robot.breaks.size()); ++k) true_turn[k] = robot.piece_motion(k).rotation;  // a piece without walls
       std::map<int, std::pair<std::vector<Eigen::Vector2d>, std::vector<Eigen::Vector2d>>> piece_walls;
       for (const auto& p : wall_points) {
         auto& [from, to] = piece_walls[robot.piece_at(robot.smooth(robot.T_dest_source * p))];
