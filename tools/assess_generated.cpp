@@ -61,6 +61,7 @@ struct PairTruth {
   int pieces = 1;
   double coverage = 0.0;
   std::vector<int> piece_of_area;  // per map area: the true piece holding most of its cells
+  std::vector<int> piece_of_cell;  // per map cell: its true piece (-1: not a free cell of an area)
 };
 
 PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph& map_graph,
@@ -71,6 +72,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
   std::vector<std::map<int, double>> votes(map_graph.areas.size());
   std::vector<char> seen(reference_raster.centres.size(), 0);
   const double cell_m2 = grid.resolution() * grid.resolution();
+  t.piece_of_cell.assign(grid.cells().size(), -1);
   for (int row = 0; row < grid.height(); ++row) {
     for (int col = 0; col < grid.width(); ++col) {
       if (grid.at(col, row) != areamatch::CellState::free) continue;
@@ -79,6 +81,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
       const int piece = robot.piece_at(bent);
       const int label = map_graph.labels[grid.index(col, row)];
       if (label >= 0) {
+        t.piece_of_cell[grid.index(col, row)] = piece;
         piece_m2[piece] += cell_m2;
         votes[static_cast<std::size_t>(label)][piece] += 1.0;
       }
@@ -140,21 +143,19 @@ int main(int argc, char** argv) {
     if (a.ok) {
       ++placed;
       std::vector<double> rigid, warped;
+      // Per true piece, its wall points and where they truly belong: its own rigid turn is their
+      // least-squares fit (its break's motion and the bend across it, which turns a bent piece too).
+      std::map<int, std::pair<std::vector<Eigen::Vector2d>, std::vector<Eigen::Vector2d>>> piece_walls;
       for (const auto& p : wall_points) {
         const Eigen::Vector2d truth_point = robot.true_dest(p);
         rigid.push_back((result.T_dest_source * p - truth_point).norm());
         warped.push_back((a.warp.field.apply(p) - truth_point).norm());
-      }
-      rigid_med = percentile(rigid, 0.5), rigid_p95 = percentile(rigid, 0.95);
-      // Each true piece's own rigid turn: the least-squares fit of where its wall points truly
-      // belong (its break's motion and the bend across it, which turns a bent piece too).
-      for (int k = 0; k <= static_cast<int>(robot.breaks.size()); ++k) true_turn[k] = robot.piece_motion(k).rotation;  // a piece without walls
-      std::map<int, std::pair<std::vector<Eigen::Vector2d>, std::vector<Eigen::Vector2d>>> piece_walls;
-      for (const auto& p : wall_points) {
         auto& [from, to] = piece_walls[robot.piece_at(robot.smooth(robot.T_dest_source * p))];
         from.push_back(p);
-        to.push_back(robot.true_dest(p));
+        to.push_back(truth_point);
       }
+      rigid_med = percentile(rigid, 0.5), rigid_p95 = percentile(rigid, 0.95);
+      for (int k = 0; k <= static_cast<int>(robot.breaks.size()); ++k) true_turn[k] = robot.piece_motion(k).rotation;  // a piece without walls
       for (const auto& [piece, walls] : piece_walls) true_turn[piece] = fitted_rotation(walls.first, walls.second);
       warp_med = percentile(warped, 0.5), warp_p95 = percentile(warped, 0.95);
       if (rigid_med >= 0.3) {
@@ -177,30 +178,29 @@ int main(int argc, char** argv) {
       std::vector<std::map<int, double>> cell_votes(pieces.size());
       for (int row = 0; row < robot.grid.height(); ++row) {
         for (int col = 0; col < robot.grid.width(); ++col) {
-          if (robot.grid.at(col, row) != areamatch::CellState::free || map_graph.labels[robot.grid.index(col, row)] < 0) continue;
-          const Eigen::Vector2d s = robot.grid.cell_center(col, row);
-          const int found_piece = a.brokenness.piece_at(s);
-          cell_votes[static_cast<std::size_t>(found_piece)][robot.piece_at(robot.smooth(robot.T_dest_source * s))] += 1.0;
+          const int true_piece = truth.piece_of_cell[robot.grid.index(col, row)];
+          if (true_piece < 0) continue;
+          const int found_piece = a.brokenness.piece_at(robot.grid.cell_center(col, row));
+          cell_votes[static_cast<std::size_t>(found_piece)][true_piece] += 1.0;
         }
       }
       auto true_by_cells = [&](std::size_t k) { return most_voted(cell_votes[k]); };
-      auto max_turn_error = [&](const auto& true_piece) {
+      auto break_turn = [&](int true_piece) { return robot.piece_motion(true_piece).rotation; };
+      auto rigid_turn = [&](int true_piece) { return true_turn.at(true_piece); };
+      // The largest error of a found piece's turn against the main one, the true pieces told by
+      // `true_piece` and their turns by `turn_of`.
+      auto max_turn_error = [&](const auto& true_piece, const auto& turn_of) {
         double worst = 0.0;
         for (std::size_t k = 1; k < pieces.size(); ++k) {
-          const double truth_turn = areamatch::wrap_angle(robot.piece_motion(true_piece(k)).rotation -
-                                                          robot.piece_motion(true_piece(0)).rotation);
+          const double truth_turn = areamatch::wrap_angle(turn_of(true_piece(k)) - turn_of(true_piece(0)));
           worst = std::max(worst, std::abs(areamatch::wrap_angle(pieces[k].rotation_rad - truth_turn)) * 180.0 / pi);
         }
         return worst;
       };
-      max_turn_fitted = 0.0;
-      max_turn = max_turn_error(true_by_areas);
-      max_turn_cells = max_turn_error(true_by_cells);
+      max_turn = max_turn_error(true_by_areas, break_turn);
+      max_turn_cells = max_turn_error(true_by_cells, break_turn);
+      max_turn_fitted = max_turn_error(true_by_cells, rigid_turn);
       turns_by_cells_ok += static_cast<int>(found) == truth.pieces && max_turn_cells <= 0.5;
-      for (std::size_t k = 1; k < pieces.size(); ++k) {  // against the true pieces' own rigid turns
-        const double truth_turn = areamatch::wrap_angle(true_turn[true_by_cells(k)] - true_turn[true_by_cells(0)]);
-        max_turn_fitted = std::max(max_turn_fitted, std::abs(areamatch::wrap_angle(pieces[k].rotation_rad - truth_turn)) * 180.0 / pi);
-      }
       turns_fitted_ok += static_cast<int>(found) == truth.pieces && max_turn_fitted <= 0.5;
       pieces_exact += static_cast<int>(found) == truth.pieces;
       turns_ok += static_cast<int>(found) == truth.pieces && max_turn <= 0.5;
