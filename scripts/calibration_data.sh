@@ -4,6 +4,8 @@
 # generated sets, the pairs of maps of different buildings in both directions, one
 # `areamatch eval` per set, each writing OUT/<set>/results.csv. Then
 #   build/tools/areamatch calibrate OUT/*/results.csv [--choose-rule --max-false-accept F]
+#   scripts/choose_both_ways_gate.py --predictions PRED.csv --calibration OUT \
+#     --simulated OUT/simulated/set/eval/results.csv OUT/simulated/onto_other_plans/results.csv
 # Runs JOBS evaluations at a time (default: the number of cores). About an hour on 2 cores.
 #   scripts/calibration_data.sh OUT [AREAMATCH_BINARY] [JOBS]
 set -euo pipefail
@@ -64,3 +66,14 @@ run_one() {
 export -f run_one; export out bin
 printf '%s\n' "${runs[@]}" | xargs -d '\n' -P "$jobs" -I{} bash -c 'run_one "$1"' _ {}
 echo "rows in $out/*/results.csv"
+
+# Simulated laser-SLAM maps of every shared layout, and each onto the other layouts, in their own
+# folder (not in $out/*/results.csv): they choose the agreement gate's both-ways thresholds
+# (scripts/choose_both_ways_gate.py) but do not train the model (trained on, they cost right answers
+# of real hand-held scans: docs/evaluation.md).
+sim="$out/simulated"
+[ -f "$sim/set/eval/results.csv" ] || "$here/scripts/simulated_set.sh" "$sim/set" "$bin" > /dev/null
+[ -f "$sim/onto_other_plans/results.csv" ] ||
+  "$bin" eval "$sim/set/onto_other_plans.json" --picture-scale 8 --out "$sim/onto_other_plans.tmp" > "$sim/onto_other_plans.log" 2>&1
+if [ -d "$sim/onto_other_plans.tmp" ]; then rm -rf "$sim/onto_other_plans.tmp/pairs"; mv "$sim/onto_other_plans.tmp" "$sim/onto_other_plans"; fi
+echo "simulated rows in $sim/set/eval/results.csv and $sim/onto_other_plans/results.csv"

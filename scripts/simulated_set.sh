@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A simulated laser-SLAM set over every layout of ../shared/maps (docs/synthetic.md): per layout,
 # 4 maps and 3 mirrored ones (seeds 1-7, golden-angle turns), each onto its layout with the door
-# width its real pairs use, and one manifest of them all; then `areamatch eval` of it.
+# width its real pairs use, and one manifest of them all; then `areamatch eval` of it. Also writes
+# OUT/onto_other_plans.json, each simulated map onto every other plan (scripts/calibration_data.sh).
 #   scripts/simulated_set.sh OUT [AREAMATCH_BINARY] [extra simulate options, e.g. --binary --bend 0.5]
 set -euo pipefail
 here="$(cd "$(dirname "$0")/.." && pwd)"
@@ -34,5 +35,14 @@ json.dump({"description": "Simulated laser-SLAM maps of every shared layout (scr
            "correct_if": {"max_rotation_error_deg": 3.0, "max_mean_displacement_m": 1.0}, "pairs": pairs},
           open(os.path.join(out, "pairs.json"), "w"), indent=1)
 print(len(pairs), "pairs in", os.path.join(out, "pairs.json"))
+# Each simulated map onto every other plan: pairs that must be refused.
+plans = sorted(set(p["destination"] for p in pairs))
+others = [{"name": p["name"] + " x " + os.path.basename(plan), "kind": "different_buildings",
+           "source": os.path.abspath(os.path.join(out, p["source"])), "destination": plan,
+           "allow_reflection": True, "different_buildings": True}
+          for p in pairs for plan in plans if plan != p["destination"]]
+json.dump({"description": "Simulated laser-SLAM maps onto the other plans (scripts/simulated_set.sh).",
+           "correct_if": {"max_rotation_error_deg": 3.0, "max_mean_displacement_m": 1.0}, "pairs": others},
+          open(os.path.join(out, "onto_other_plans.json"), "w"), indent=1)
 PY
 "$bin" eval "$out/pairs.json" --out "$out/eval" 2> "$out/eval.log" | tail -n 4

@@ -598,7 +598,11 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   CHECK(chosen.out.find(", lower walls ") != std::string::npos);
   const Run always = run("calibrate " + out + "/results.csv --gate-max-lower-walls 2", false);
   CHECK(always.status == 0);
-  CHECK(always.out.find("with lower wall agreement <= 2, or p_correct >= 0.85") != std::string::npos);
+  CHECK(always.out.find("with lower wall agreement <= 2 (above it: occupied walls >= 0.85 and margin >= 0.007), or "
+                        "p_correct >= 0.85") != std::string::npos);
+  const Run off = run("calibrate " + out + "/results.csv --gate-both-ways-occupied 2 --gate-both-ways-margin 0.01", false);
+  CHECK(off.status == 0);
+  CHECK(off.out.find("(above it: occupied walls >= 2 and margin >= 0.01)") != std::string::npos);
   CHECK(run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 2").status == 2);
   CHECK(run("calibrate " + out + "/results.csv --choose-on real").out.find("--choose-on needs --choose-rule") != std::string::npos);
   CHECK(run("calibrate " + out + "/results.csv --choose-rule --choose-on some").status == 2);

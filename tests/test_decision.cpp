@@ -214,11 +214,11 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   r.evidence.forward_wall_agreement = 0.45;  // lab_b-like: the SLAM map's clutter unexplained
   r.evidence.overlap_m2 = 283.0;             // ... on a whole floor
   r.p_correct = 0.2;
-  CHECK(detail::passes_agreement_gate(r.evidence, params.decision));
+  CHECK(detail::passes_agreement_gate(r, params.decision));
   CHECK(detail::refusal(r, params.decision, true).reason.empty());
   r.evidence.forward_wall_agreement = 0.8;  // both ways: the model alone, and it is not sure
   CHECK(lower_wall_agreement(r.evidence) == 0.8);
-  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params.decision));
+  CHECK_FALSE(detail::passes_agreement_gate(r, params.decision));
   const std::string refused = detail::refusal(r, params.decision, true).reason;
   CHECK(refused.find("gate_max_lower_walls 0.7") != std::string::npos);
   CHECK(refused.find("accept_p_correct 0.85") != std::string::npos);
@@ -230,7 +230,7 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   CHECK(detail::refusal(r, always.decision, true).reason.empty());
   r.evidence.forward_wall_agreement = std::numeric_limits<double>::quiet_NaN();  // not measured: lower 0
   CHECK(lower_wall_agreement(r.evidence) == 0.0);
-  CHECK(detail::passes_agreement_gate(r.evidence, params.decision));
+  CHECK(detail::passes_agreement_gate(r, params.decision));
   // The paper's preset answers whatever the walls and the overlap.
   CHECK(MatcherParams::paper().decision.gate_max_lower_walls > 1.0);
   CHECK(MatcherParams::paper().decision.gate_min_overlap_m2 == 0.0);
@@ -240,6 +240,51 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   bad = params;
   bad.decision.gate_min_overlap_m2 = -1.0;
   CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_min_overlap_m2"), parameter_error);
+}
+
+TEST_CASE("where the walls agree both ways the gate opens only with the unentered rooms' walls and a margin") {
+  // A simulated SLAM map of office_d onto its plan (scripts/simulated_set.sh): both wall
+  // agreements high, the rooms seen but not entered agreeing too, p_correct 0.80.
+  const MatcherParams params;
+  MatchResult r;
+  r.score = 0.44;
+  r.margin = 0.030;
+  r.evidence.agreement = 0.909;
+  r.evidence.reverse_wall_agreement = 0.972;
+  r.evidence.forward_wall_agreement = 0.729;
+  r.evidence.occupied_wall_agreement = 0.871;
+  r.evidence.overlap_m2 = 593.0;
+  r.p_correct = 0.80;
+  CHECK(lower_wall_agreement(r.evidence) > params.decision.gate_max_lower_walls);
+  CHECK(detail::passes_agreement_gate(r, params.decision));
+  CHECK(detail::refusal(r, params.decision, true).reason.empty());
+  // Two generated buildings of one corridor plan (a wrong answer): their unentered rooms differ.
+  r.evidence.occupied_wall_agreement = 0.771;
+  CHECK_FALSE(detail::passes_agreement_gate(r, params.decision));
+  std::string refused = detail::refusal(r, params.decision, true).reason;
+  CHECK(refused.find("gate_both_ways_min_occupied 0.85") != std::string::npos);
+  CHECK(refused.find("alike buildings") != std::string::npos);
+  // A pentagonal floor turned by 144°: everything agrees, but a rival scores the same.
+  r.evidence.occupied_wall_agreement = 0.929;
+  r.margin = 0.001;
+  CHECK_FALSE(detail::passes_agreement_gate(r, params.decision));
+  refused = detail::refusal(r, params.decision, true).reason;
+  CHECK(refused.find("gate_both_ways_min_margin 0.007") != std::string::npos);
+  CHECK(refused.find("symmetric") != std::string::npos);
+  r.p_correct = 0.9;  // the model may still accept it alone
+  CHECK(detail::refusal(r, params.decision, true).reason.empty());
+  r.p_correct = 0.80;
+  MatcherParams off = params;  // the rule before 2026-12-07: the model alone where both agree
+  off.decision.gate_both_ways_min_occupied = 1.01;
+  r.margin = 0.030;
+  CHECK_FALSE(detail::passes_agreement_gate(r, off.decision));
+  CHECK(detail::passes_agreement_gate(r, params.decision));
+  MatcherParams bad = params;
+  bad.decision.gate_both_ways_min_occupied = -0.1;
+  CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_both_ways_min_occupied"), parameter_error);
+  bad = params;
+  bad.decision.gate_both_ways_min_margin = std::numeric_limits<double>::quiet_NaN();
+  CHECK_THROWS_WITH_AS(bad.validate(), doctest::Contains("gate_both_ways_min_margin"), parameter_error);
 }
 
 TEST_CASE("the agreement gate needs enough shared free space: walls that agree on one room prove little") {
@@ -254,7 +299,7 @@ TEST_CASE("the agreement gate needs enough shared free space: walls that agree o
   r.evidence.forward_wall_agreement = 0.31;
   r.evidence.overlap_m2 = 42.9;
   r.p_correct = 0.09;
-  CHECK_FALSE(detail::passes_agreement_gate(r.evidence, params.decision));
+  CHECK_FALSE(detail::passes_agreement_gate(r, params.decision));
   const std::string refused = detail::refusal(r, params.decision, true).reason;
   CHECK(refused.find("gate_min_overlap_m2 100") != std::string::npos);
   CHECK(refused.find("42.9") != std::string::npos);
@@ -265,7 +310,7 @@ TEST_CASE("the agreement gate needs enough shared free space: walls that agree o
   any.decision.gate_min_overlap_m2 = 0.0;  // the rule before 2026-12-04
   CHECK(detail::refusal(r, any.decision, true).reason.empty());
   r.evidence.overlap_m2 = 231.0;  // the least any right answer through the gate shares on the real maps
-  CHECK(detail::passes_agreement_gate(r.evidence, params.decision));
+  CHECK(detail::passes_agreement_gate(r, params.decision));
 }
 
 TEST_CASE("the turn margin: a right answer lies better than its own quarter turns and mirror images") {

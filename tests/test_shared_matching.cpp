@@ -173,7 +173,7 @@ TEST_CASE("the decision fitted without any real SLAM building judges the SLAM ma
   for (const JudgedRow* r : rows) {
     if (!touches_slam(*r)) continue;
     const MatchResult& m = r->row.result;
-    const bool accepted = detail::passes_agreement_gate(m.evidence, defaults.decision) ||
+    const bool accepted = detail::passes_agreement_gate(m, defaults.decision) ||
                           p_correct(decision_features(m), model) >= defaults.decision.accept_p_correct;
     if (r->right) {
       ++right;
@@ -341,7 +341,7 @@ TEST_CASE("hand-held scans: right answers accepted, mirrors and other places ref
   std::size_t right = 0, false_rejects = 0, wrong = 0, false_accepts = 0;
   for (std::size_t i = 0; i < handheld_rows; ++i) {
     const JudgedRow& r = rows[i];
-    const bool accepted = detail::passes_agreement_gate(r.row.result.evidence, defaults.decision) ||
+    const bool accepted = detail::passes_agreement_gate(r.row.result, defaults.decision) ||
                           predicted[i] >= defaults.decision.accept_p_correct;
     if (r.right) {
       ++right;

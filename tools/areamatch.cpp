@@ -699,7 +699,8 @@ static_assert(areamatch::default_program_threads == 2, "update the help texts' -
 
 /// A help text with the decision options' defaults filled in from the library's own
 /// (`MatcherParams{}`), so that the program cannot print another default than the one it uses:
-/// {min_agreement}, {gate_max_lower_walls}, {gate_min_overlap_m2}, {accept_p_correct}.
+/// {min_agreement}, {gate_max_lower_walls}, {gate_min_overlap_m2}, {gate_both_ways_min_occupied},
+/// {gate_both_ways_min_margin}, {accept_p_correct}.
 std::string with_decision_defaults(std::string text) {
   const areamatch::MatcherParams defaults;
   // Whole numbers as such (format_double's shortest form of 100 is 1e+02).
@@ -708,6 +709,8 @@ std::string with_decision_defaults(std::string text) {
       {"{min_agreement}", plain(defaults.decision.min_agreement)},
       {"{gate_max_lower_walls}", plain(defaults.decision.gate_max_lower_walls)},
       {"{gate_min_overlap_m2}", plain(defaults.decision.gate_min_overlap_m2)},
+      {"{gate_both_ways_min_occupied}", plain(defaults.decision.gate_both_ways_min_occupied)},
+      {"{gate_both_ways_min_margin}", plain(defaults.decision.gate_both_ways_min_margin)},
       {"{accept_p_correct}", plain(defaults.decision.accept_p_correct)}};
   for (const auto& [key, value] : values) {
     for (std::size_t at = text.find(key); at != std::string::npos; at = text.find(key, at + value.size())) {
@@ -739,6 +742,9 @@ const std::string kPairOptionsHelp = with_decision_defaults(
     "                          lower of the two wall agreements is at most W (default {gate_max_lower_walls}; above 1: always)\n"
     "  --gate-min-overlap M2   ... and the maps share at least M2 square metres of free space (default {gate_min_overlap_m2};\n"
     "                          0: whatever the overlap)\n"
+    "                          Above W the gate still opens where the walls of rooms seen but not entered agree\n"
+    "                          (default {gate_both_ways_min_occupied}) and no rival comes within margin {gate_both_ways_min_margin}: --set\n"
+    "                          decision.gate_both_ways_min_occupied=Q, decision.gate_both_ways_min_margin=M\n"
     "  --threads N             load and segment the two maps side by side on N threads (default 2; 0: one\n"
     "                          per core); the same result for any N\n" +
     std::string(kSetHelp));
@@ -1481,6 +1487,9 @@ const std::string kCalibrateHelp = with_decision_defaults(
     "  --gate-max-lower-walls W  ... when the lower wall agreement is <= W (default {gate_max_lower_walls}; above 1: always)\n"
     "  --gate-min-overlap M2  ... and the shared free space is >= M2 m² (default {gate_min_overlap_m2}; 0: any; kept, not\n"
     "                     chosen, by --choose-rule)\n"
+    "  --gate-both-ways-occupied Q  above W, the gate needs the occupied walls to agree >= Q (default\n"
+    "                     {gate_both_ways_min_occupied}; above 1: off; kept, not chosen, by --choose-rule)\n"
+    "  --gate-both-ways-margin M  ... and a margin >= M to the best rival (default {gate_both_ways_min_margin}; kept)\n"
     "  --svg OUT.svg      the reliability diagram of the real buildings' rows (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
     "                     the in-sample p_correct and whether the rule accepts it (cross-validated):\n"
@@ -1499,7 +1508,7 @@ const std::string kCalibrateHelp = with_decision_defaults(
 void report_chosen_rule(const Args& args, const std::vector<CalibrationRow>& rows, const std::vector<std::string>& buildings,
                         const areamatch_cli::JudgingBuildings& judging, const areamatch_cli::MapRoles& roles,
                         const std::vector<double>& predicted, double l2, const areamatch::DecisionParams& base,
-                        double gate_overlap) {
+                        const Rule& given) {
   const auto line = areamatch_cli::counts_line;
   const double max_false_accept = args.number("max-false-accept", false, true).value_or(0.005);
   if (max_false_accept > 1.0) throw UsageError("--max-false-accept must be a share between 0 and 1");
@@ -1514,11 +1523,11 @@ void report_chosen_rule(const Args& args, const std::vector<CalibrationRow>& row
     judged_rows.push_back(i);
     judged_predicted.push_back(predicted[i]);
   }
-  const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept, gate_overlap);
+  const Rule shipped = choose_rule(rows, judged_rows, judged_predicted, max_false_accept, given);
   std::vector<Rule> chosen;
   std::vector<signed char> accepted;
   try {
-    accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, gate_overlap, chosen);
+    accepted = nested_rule_cv(rows, judging, l2, base, max_false_accept, choose_on_all, given, chosen);
   } catch (const areamatch::parameter_error& e) {
     throw UsageError(std::string("--choose-rule: without two of the buildings the rows left are not enough to fit on (") +
                      e.what() + "); nested cross-validation needs more buildings with right answers");
@@ -1535,7 +1544,9 @@ void report_chosen_rule(const Args& args, const std::vector<CalibrationRow>& row
             << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
             << format_double(shipped.min_agreement) << " with lower wall agreement <= "
             << format_double(shipped.max_lower_walls) << " on at least " << format_fixed(shipped.min_overlap_m2, 0)
-            << " m2 shared, or p_correct >= " << format_double(shipped.accept_p)
+            << " m2 shared (above it: occupied walls >= " << format_double(shipped.both_ways_min_occupied)
+            << " and margin >= " << format_double(shipped.both_ways_min_margin) << ", given), or p_correct >= "
+            << format_double(shipped.accept_p)
             << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
   for (const auto& [thresholds, n] : folds) {
     std::cout << " [agreement " << format_double(thresholds[0]) << ", lower walls " << format_double(thresholds[1])
@@ -1582,7 +1593,7 @@ void report_reliability(const Args& args, const std::vector<CalibrationRow>& row
 }
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "svg", "predictions", "max-false-accept", "choose-on"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "gate-both-ways-occupied", "gate-both-ways-margin", "svg", "predictions", "max-false-accept", "choose-on"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -1598,6 +1609,9 @@ int run_calibrate(const std::vector<std::string>& tokens) {
       args.number("gate-max-lower-walls", false, true).value_or(areamatch::DecisionParams{}.gate_max_lower_walls);
   const double gate_overlap =
       args.number("gate-min-overlap", false, true).value_or(areamatch::DecisionParams{}.gate_min_overlap_m2);
+  const double both_ways_occupied =
+      args.number("gate-both-ways-occupied", false, true).value_or(areamatch::DecisionParams{}.gate_both_ways_min_occupied);
+  const double both_ways_margin = args.number("gate-both-ways-margin").value_or(areamatch::DecisionParams{}.gate_both_ways_min_margin);
   std::vector<CalibrationRow> rows;
   areamatch_cli::MapRoles roles;
   for (const auto& path : args.positional()) {
@@ -1614,8 +1628,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::vector<double> in_sample;
   for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
 
-  const Rule rule{base.accept_p_correct, gate, gate_walls, gate_overlap}, model_half{0.5, 2.0},
-      gate_alone{2.0, gate, gate_walls, gate_overlap};
+  const Rule rule{base.accept_p_correct, gate, gate_walls, gate_overlap, both_ways_occupied, both_ways_margin},
+      model_half{0.5, 2.0}, gate_alone{2.0, gate, gate_walls, gate_overlap, both_ways_occupied, both_ways_margin};
   std::vector<DecisionCounts> per_building(buildings.size());
   DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
   std::vector<signed char> cv_accepted(rows.size());
@@ -1633,7 +1647,8 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::cout << rows.size() << " rows, " << buildings.size() << " buildings (" << real_buildings
             << (judging.all_judge ? " judging: no real building, generated ones judge" : " real, which judge; the others generated, which only train")
             << "); rule: agreement >= " << format_double(gate)
-            << " with lower wall agreement <= " << format_double(gate_walls) << ", or p_correct >= "
+            << " with lower wall agreement <= " << format_double(gate_walls) << " (above it: occupied walls >= "
+            << format_double(both_ways_occupied) << " and margin >= " << format_double(both_ways_margin) << "), or p_correct >= "
             << format_double(base.accept_p_correct) << "\n\n"
             << "leave-one-building-out, every building (a pair of two buildings counts under both):\n"
             << "building | right answers | false rejects | wrong answers of one building | accepted | pairs of different buildings | accepted\n";
@@ -1643,7 +1658,9 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::cout << line("total (cross-validated)", cv_total) << line("total (in-sample)", in_sample_total)
             << line("other rule: p_correct >= 0.5 alone (cross-validated)", cv_model_half)
             << line("other rule: agreement >= " + format_double(gate) + " (lower walls <= " + format_double(gate_walls) +
-                        ") alone", gate_only);
+                        ", or occupied walls >= " + format_double(both_ways_occupied) + " with margin >= " +
+                        format_double(both_ways_margin) + ") alone",
+                    gate_only);
   std::cout << "\n" << areamatch_cli::judged_report(rows, cv_accepted, buildings, judging, roles, "leave-one-building-out");
   std::cout << "\nfitted on all rows: bias = " << format_fixed(fitted.bias, 3) << ", weights = {";
   for (std::size_t i = 0; i < fitted.weights.size(); ++i) {
@@ -1663,7 +1680,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
       if (args.text(name)) throw UsageError(std::string("--") + name + " needs --choose-rule");
     }
   }
-  if (args.flag("choose-rule")) report_chosen_rule(args, rows, buildings, judging, roles, predicted, l2, base, gate_overlap);
+  if (args.flag("choose-rule")) report_chosen_rule(args, rows, buildings, judging, roles, predicted, l2, base, rule);
   return 0;
 }
 

@@ -130,6 +130,9 @@ void for_each_matcher_parameter(P& p, F&& f) {
   f(info("decision.gate_max_lower_walls", "the agreement accepts alone only where the lower wall agreement is at most this"),
     p.decision.gate_max_lower_walls);
   f(info("decision.gate_min_overlap_m2", "and on at least this much shared free space"), p.decision.gate_min_overlap_m2);
+  f(info("decision.gate_both_ways_min_occupied", "where the walls agree both ways, the gate needs the occupied walls to agree this much"),
+    p.decision.gate_both_ways_min_occupied);
+  f(info("decision.gate_both_ways_min_margin", "... and this margin to the best rival"), p.decision.gate_both_ways_min_margin);
   f(info("decision.min_margin", "reject below this margin to the best rival"), p.decision.min_margin);
   f(info("decision.bias", "the p_correct model's bias (areamatch calibrate fits it)"), p.decision.bias);
   f(info("decision.weights", "its weights, in DecisionFeatures::names order"), p.decision.weights);

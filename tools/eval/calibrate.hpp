@@ -66,6 +66,8 @@ struct CalibrationRow {
   double agreement = 0.0;    ///< MatchEvidence::agreement, for the rule's agreement gate
   double lower_walls = 0.0;  ///< `areamatch::lower_wall_agreement`, which limits the gate
   double overlap_m2 = 0.0;   ///< `MatchEvidence::overlap_m2`, which the gate needs enough of
+  double occupied_walls = std::nan("");  ///< `MatchEvidence::occupied_wall_agreement` (the gate where walls agree both ways)
+  double margin = std::nan("");          ///< `MatchResult::margin` (ditto)
   areamatch::DecisionSample sample;
   int source_building = -1, dest_building = -1;  ///< filled by `assign_buildings`
   /// The two buildings, as `areamatch::leave_one_building_out` takes them.
@@ -175,6 +177,8 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     row.agreement = value(f, c_agreement);
     row.lower_walls = areamatch::lower_wall_agreement(r.evidence);
     row.overlap_m2 = std::isfinite(r.evidence.overlap_m2) ? r.evidence.overlap_m2 : 0.0;
+    row.occupied_walls = r.evidence.occupied_wall_agreement;
+    row.margin = r.margin;
     row.sample.correct = !row.different_buildings && f[c_truth] == "true";
     rows.push_back(std::move(row));
   }
@@ -285,16 +289,18 @@ inline std::vector<double> leave_one_building_out(const std::vector<CalibrationR
   return areamatch::leave_one_building_out(samples, buildings, l2, base);
 }
 
-/// The matcher's acceptance rule: accepted when agreement >= `min_agreement` or p_correct >=
-/// `accept_p` (a threshold above 1 turns its part off).
-/// The matcher's rule: accepted at p_correct ≥ accept_p, or at agreement ≥ min_agreement when
-/// the lower wall agreement (`walls_worst`) is at most max_lower_walls (above 1: always) and the
-/// shared free space at least min_overlap_m2.
+/// The matcher's rule: accepted at p_correct ≥ accept_p, or at agreement ≥ min_agreement on at
+/// least min_overlap_m2 of shared free space when the lower wall agreement (`walls_worst`) is at
+/// most max_lower_walls (above 1: always) or, above it, the occupied walls agree at least
+/// both_ways_min_occupied with a margin of at least both_ways_min_margin (the library's
+/// `detail::passes_agreement_gate`).
 struct Rule {
   double accept_p = 0.9, min_agreement = 0.835, max_lower_walls = 2.0, min_overlap_m2 = 0.0;
+  double both_ways_min_occupied = 2.0, both_ways_min_margin = 0.0;
   bool accepts(const CalibrationRow& r, double p) const {
     return p >= accept_p ||
-           (r.agreement >= min_agreement && r.lower_walls <= max_lower_walls && r.overlap_m2 >= min_overlap_m2);
+           (r.agreement >= min_agreement && r.overlap_m2 >= min_overlap_m2 &&
+            (r.lower_walls <= max_lower_walls || (r.occupied_walls >= both_ways_min_occupied && r.margin >= both_ways_min_margin)));
   }
 };
 
@@ -338,11 +344,12 @@ inline const std::vector<double>& max_lower_walls_grid() {
 /// The rule with the fewest false rejects on rows `subset` (judged by `predicted`, one per row of
 /// `subset`) whose share of wrong answers accepted stays at or below `max_false_accept`; ties go
 /// to fewer false accepts, then to the stricter thresholds. When no rule keeps the bound, the one
-/// with the fewest false accepts. The gate's least overlap is given, not chosen: chosen too, the
+/// with the fewest false accepts. The gate's least overlap and its both-ways part are given (`given`),
+/// not chosen: chosen too, the
 /// overlap freed the false-accept budget for looser thresholds elsewhere, and the nested
 /// cross-validation accepted 6 of 2390 real wrong answers instead of 0 (docs/evaluation.md).
 inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vector<std::size_t>& subset,
-                        const std::vector<double>& predicted, double max_false_accept, double min_overlap_m2) {
+                        const std::vector<double>& predicted, double max_false_accept, const Rule& given) {
   std::size_t wrong = 0;
   for (std::size_t i : subset) wrong += !rows[i].sample.correct;
   const double allowed = max_false_accept * static_cast<double>(wrong);
@@ -353,7 +360,8 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
   for (double accept_p : accept_p_grid()) {
     for (double min_agreement : min_agreement_grid()) {
       for (double max_lower_walls : max_lower_walls_grid()) {
-        const Rule rule{accept_p, min_agreement, max_lower_walls, min_overlap_m2};
+        const Rule rule{accept_p, min_agreement, max_lower_walls, given.min_overlap_m2, given.both_ways_min_occupied,
+                        given.both_ways_min_margin};
         std::size_t rejects = 0, accepts = 0;
         for (std::size_t k = 0; k < subset.size(); ++k) {
           const CalibrationRow& r = rows[subset[k]];
@@ -388,7 +396,7 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
 /// judged: a generated building's); `chosen` gets each fold's rule.
 inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>& rows, const JudgingBuildings& judging, double l2,
                                                const areamatch::DecisionParams& base, double max_false_accept, bool choose_on_all,
-                                               double min_overlap_m2, std::vector<Rule>& chosen) {
+                                               const Rule& given, std::vector<Rule>& chosen) {
   std::vector<int> verdict(rows.size(), -1);
   for (std::size_t held = 0; held < judging.judges.size(); ++held) {
     if (!judging.judges[held]) continue;  // generated buildings train, they do not judge
@@ -419,7 +427,7 @@ inline std::vector<signed char> nested_rule_cv(const std::vector<CalibrationRow>
       inner.push_back(train[k]);
       inner_predicted.push_back(train_predicted[k]);
     }
-    const Rule rule = choose_rule(rows, inner, inner_predicted, max_false_accept, min_overlap_m2);
+    const Rule rule = choose_rule(rows, inner, inner_predicted, max_false_accept, given);
     chosen.push_back(rule);
     const areamatch::DecisionParams model = areamatch::fit_decision(samples, l2, base);
     for (std::size_t i : test) {

@@ -99,7 +99,7 @@ inline std::vector<char> distrust_lone_matches(std::vector<MergeEdge>& edges, st
   for (std::size_t e = 0; e < edges.size(); ++e) {
     MergeEdge& edge = edges[e];
     const bool lone = accepted_matches[edge.source] == 1 || accepted_matches[edge.dest] == 1;
-    if (!edge.match.ok || !lone || passes_agreement_gate(edge.match.evidence, matcher_params.decision) ||
+    if (!edge.match.ok || !lone || passes_agreement_gate(edge.match, matcher_params.decision) ||
         edge.match.p_correct >= params.lone_match_min_p_correct) {
       continue;
     }

@@ -3,8 +3,9 @@
 /// Applies the rule that sets `MatchResult::ok`, whose thresholds and model are `DecisionParams`
 /// (match/decision/decision.hpp; docs/matching.md, "the decision"): an answer is refused when its whole-map
 /// score is below `min_score`, when the maps agree too little and the calibrated model is not sure
-/// (`min_agreement`, `accept_p_correct`; the agreement alone does not do where the walls agree both
-/// ways, `gate_max_lower_walls`, or on little shared free space, `gate_min_overlap_m2`), when the
+/// (`min_agreement`, `accept_p_correct`; the agreement alone does not do on little shared free space,
+/// `gate_min_overlap_m2`, or where the walls agree both ways, `gate_max_lower_walls`, unless the
+/// walls of rooms seen but not entered agree too and no rival comes close, `gate_both_ways_*`), when the
 /// model finds it too likely wrong (`min_p_correct`), or when a rival is too close
 /// (`min_margin`); and words each refusal.
 
@@ -16,13 +17,22 @@
 
 namespace areamatch::detail {
 
+/// Whether the walls agree both ways well enough for the gate to open there: the walls of rooms
+/// seen but not entered agree too (`gate_both_ways_min_occupied`) and no rival comes close
+/// (`gate_both_ways_min_margin`).
+inline bool both_ways_agreement_holds(const MatchResult& result, const DecisionParams& rule) {
+  return result.evidence.occupied_wall_agreement >= rule.gate_both_ways_min_occupied &&
+         result.margin >= rule.gate_both_ways_min_margin;
+}
+
 /// Whether the agreement gate lets an answer through whatever the model says: the maps agree
-/// (`min_agreement`), one map's walls are largely unexplained by the other's
-/// (`gate_max_lower_walls`), and they share enough free space for that to mean something
-/// (`gate_min_overlap_m2`).
-inline bool passes_agreement_gate(const MatchEvidence& evidence, const DecisionParams& rule) {
-  return evidence.agreement >= rule.min_agreement && lower_wall_agreement(evidence) <= rule.gate_max_lower_walls &&
-         evidence.overlap_m2 >= rule.gate_min_overlap_m2;
+/// (`min_agreement`) and share enough free space for that to mean something
+/// (`gate_min_overlap_m2`), and either one map's walls are largely unexplained by the other's
+/// (`gate_max_lower_walls`) or, where they agree both ways, `both_ways_agreement_holds`.
+inline bool passes_agreement_gate(const MatchResult& result, const DecisionParams& rule) {
+  const MatchEvidence& evidence = result.evidence;
+  return evidence.agreement >= rule.min_agreement && evidence.overlap_m2 >= rule.gate_min_overlap_m2 &&
+         (lower_wall_agreement(evidence) <= rule.gate_max_lower_walls || both_ways_agreement_holds(result, rule));
 }
 
 /// A refusal: its reason (empty when accepted) and what it says of the maps.
@@ -61,8 +71,7 @@ inline Refusal refusal(const MatchResult& result, const DecisionParams& rule, bo
             weak};
   }
   // Agreement enough, but on too little shared free space: the gate is closed, the model decides.
-  if (evidence.agreement >= rule.min_agreement && lower_wall_agreement(evidence) <= rule.gate_max_lower_walls &&
-      !passes_agreement_gate(evidence, rule) && !model_sure) {
+  if (evidence.agreement >= rule.min_agreement && evidence.overlap_m2 < rule.gate_min_overlap_m2 && !model_sure) {
     return {"not sure: the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
                 format_double(rule.min_agreement) + ") on too little shared free space to go on that alone (" +
                 format_fixed(evidence.overlap_m2, 1) + " m² < gate_min_overlap_m2 " + format_fixed(rule.gate_min_overlap_m2, 0) +
@@ -70,14 +79,22 @@ inline Refusal refusal(const MatchResult& result, const DecisionParams& rule, bo
                 format_double(rule.accept_p_correct),
             Rejection::not_sure};
   }
-  // Agreement enough, but the walls agree both ways too: the gate is closed, the model decides.
-  if (evidence.agreement >= rule.min_agreement && !passes_agreement_gate(evidence, rule) && !model_sure) {
+  // Agreement enough, but the walls agree both ways too, where alike buildings and a symmetric
+  // building's turned copies agree as well: the gate asks for more, else the model decides.
+  if (evidence.agreement >= rule.min_agreement && !passes_agreement_gate(result, rule) && !model_sure) {
+    const bool occupied_short = !(evidence.occupied_wall_agreement >= rule.gate_both_ways_min_occupied);
+    const std::string shortfall =
+        occupied_short ? "the walls of rooms seen but not entered agree " + format_fixed(evidence.occupied_wall_agreement, 3) +
+                             " < gate_both_ways_min_occupied " + format_double(rule.gate_both_ways_min_occupied) +
+                             ": alike buildings agree like this too"
+                       : "a rival comes within margin " + format_fixed(result.margin, 3) + " < gate_both_ways_min_margin " +
+                             format_double(rule.gate_both_ways_min_margin) + ": a symmetric building's turned copy agrees as well";
     return {"not sure: the maps agree (agreement " + format_fixed(evidence.agreement, 3) + " >= min_agreement " +
                 format_double(rule.min_agreement) + ") and their walls agree both ways (the lower " +
                 format_fixed(lower_wall_agreement(evidence), 3) + " > gate_max_lower_walls " +
-                format_double(rule.gate_max_lower_walls) + "), where the calibrated model judges alone, and it is not sure " +
-                "enough: " + p_text + " < accept_p_correct " + format_double(rule.accept_p_correct) +
-                " (alike buildings agree like this too)",
+                format_double(rule.gate_max_lower_walls) + "), but " + shortfall +
+                "; the calibrated model, judging alone, is not sure enough: " + p_text + " < accept_p_correct " +
+                format_double(rule.accept_p_correct),
             Rejection::not_sure};
   }
   if (result.p_correct < rule.min_p_correct) {

@@ -73,8 +73,10 @@ struct DecisionFeatures {
 /// The accept/reject rule in one place: its thresholds and the logistic model
 /// p = 1 / (1 + exp(−(bias + Σ weights_i · x_i))) it reads. An answer is accepted (`MatchResult::ok`)
 /// when its whole-map score is at least `min_score`, p ≥ `accept_p_correct` or the agreement gate
-/// lets it through (agreement ≥ `min_agreement`, the lower wall agreement ≤ `gate_max_lower_walls`,
-/// at least `gate_min_overlap_m2` of shared free space), p ≥ `min_p_correct`, and no rival is
+/// lets it through (agreement ≥ `min_agreement`, at least `gate_min_overlap_m2` of shared free
+/// space, and either the lower wall agreement ≤ `gate_max_lower_walls` or, where the walls agree
+/// both ways, the walls of rooms seen but not entered agreeing ≥ `gate_both_ways_min_occupied` with
+/// a margin to the best rival ≥ `gate_both_ways_min_margin`), p ≥ `min_p_correct`, and no rival is
 /// within `min_margin`. match/decision/acceptance.hpp applies it and words each refusal.
 struct DecisionParams {
   /// Below this whole-map score (see `MatchResult::score`) the best transform is rejected.
@@ -95,6 +97,21 @@ struct DecisionParams {
   /// overlap_m2`, destination m²): agreeing walls prove little on one room. 100 m² (a few rooms),
   /// chosen as `gate_max_lower_walls` was (docs/evaluation.md). 0: the gate whatever the overlap.
   double gate_min_overlap_m2 = 100.0;
+  /// Where the walls agree both ways (the lower wall agreement above `gate_max_lower_walls`) the
+  /// gate still opens when the walls away from the shared free space agree too
+  /// (`MatchEvidence::occupied_wall_agreement` at least this) and the answer stands out from its
+  /// rivals (`gate_both_ways_min_margin`). Two alike buildings agree in their shared corridors,
+  /// not in the rooms seen but not entered; a simulated or clean SLAM map of the plan's building
+  /// agrees in both (docs/evaluation.md, "Where the walls agree both ways"). 0.85: on the rows of
+  /// `scripts/calibration_data.sh` and its simulated SLAM sets, the wrong answers in this region
+  /// reach 0.771 and every value from 0.78 to 0.85 accepts and refuses the same rows; the choice,
+  /// left out layout by layout, keeps the strictest. Above 1: this part of the gate is off.
+  double gate_both_ways_min_occupied = 0.85;
+  /// ... and needs `MatchResult::margin` at least this: a symmetric building's turned copy agrees
+  /// both ways as well as the right answer (a pentagonal floor, 72° apart), and only its margin,
+  /// 0.000–0.006 against the right answers' 0.002 and more, says that the evidence cannot tell
+  /// them apart. 0.007, chosen with `gate_both_ways_min_occupied` (docs/evaluation.md).
+  double gate_both_ways_min_margin = 0.007;
   /// Below this margin to a different or mirrored rival the answer is rejected.
   double min_margin = 0.0;
   /// Fitted by `areamatch calibrate` (l2 = 1) on the 7392 rows of `scripts/calibration_data.sh`
@@ -132,6 +149,10 @@ struct DecisionParams {
     detail::require_non_negative(min_agreement, "DecisionParams::min_agreement");
     detail::require_non_negative(gate_max_lower_walls, "DecisionParams::gate_max_lower_walls");
     detail::require_non_negative(gate_min_overlap_m2, "DecisionParams::gate_min_overlap_m2");
+    detail::require_non_negative(gate_both_ways_min_occupied, "DecisionParams::gate_both_ways_min_occupied");
+    if (!std::isfinite(gate_both_ways_min_margin)) {
+      throw parameter_error("DecisionParams::gate_both_ways_min_margin must be finite");
+    }
     if (!std::isfinite(min_margin)) throw parameter_error("DecisionParams::min_margin must be finite");
     if (!std::isfinite(bias)) throw parameter_error("DecisionParams::bias must be finite");
     for (double w : weights) {
