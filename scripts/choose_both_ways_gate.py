@@ -21,7 +21,7 @@ judged plan by plan, each by thresholds chosen without its plan's rows. Standard
 import argparse, collections, csv, glob, os, sys
 
 # DecisionParams' other thresholds (the shipped ones).
-MIN_SCORE, ACCEPT_P, MIN_AGREEMENT, MAX_LOWER_WALLS, MIN_OVERLAP = 0.25, 0.85, 0.835, 0.7, 100.0
+MIN_SCORE, ACCEPT_P, MIN_AGREEMENT, MAX_LOWER_WALLS, MIN_OVERLAP = 0.1, 0.85, 0.835, 0.7, 100.0
 OCCUPIED_GRID = [2.0, 0.95, 0.9, 0.85, 0.8, 0.75, 0.7]          # strict to lenient (above 1: off)
 MARGIN_GRID = [0.05, 0.02, 0.01, 0.007, 0.005, 0.002, 0.0]
 

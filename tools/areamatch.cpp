@@ -699,13 +699,14 @@ static_assert(areamatch::default_program_threads == 2, "update the help texts' -
 
 /// A help text with the decision options' defaults filled in from the library's own
 /// (`MatcherParams{}`), so that the program cannot print another default than the one it uses:
-/// {min_agreement}, {gate_max_lower_walls}, {gate_min_overlap_m2}, {gate_both_ways_min_occupied},
+/// {min_score}, {min_agreement}, {gate_max_lower_walls}, {gate_min_overlap_m2}, {gate_both_ways_min_occupied},
 /// {gate_both_ways_min_margin}, {accept_p_correct}.
 std::string with_decision_defaults(std::string text) {
   const areamatch::MatcherParams defaults;
   // Whole numbers as such (format_double's shortest form of 100 is 1e+02).
   auto plain = [](double v) { return v == std::floor(v) && std::abs(v) < 1e9 ? format_fixed(v, 0) : format_double(v); };
   const std::pair<std::string, std::string> values[] = {
+      {"{min_score}", plain(defaults.decision.min_score)},
       {"{min_agreement}", plain(defaults.decision.min_agreement)},
       {"{gate_max_lower_walls}", plain(defaults.decision.gate_max_lower_walls)},
       {"{gate_min_overlap_m2}", plain(defaults.decision.gate_min_overlap_m2)},
@@ -733,7 +734,7 @@ const std::string kPairOptionsHelp = with_decision_defaults(
     "  --k N                   mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-p-correct P       reject when the calibrated probability that the answer is right is below P\n"
     "                          (default 0: off; see docs/evaluation.md)\n"
-    "  --min-score S           reject when the best whole-map score is below S (default 0.25)\n"
+    "  --min-score S           reject when the best whole-map score is below S (default {min_score})\n"
     "  --min-agreement A       reject when the maps agree less than A under the best transform and the\n"
     "                          model is not sure (default {min_agreement}; 0 with --gate-max-lower-walls 2 and --gate-min-overlap 0\n"
     "                          always answers;\n"
@@ -1344,7 +1345,7 @@ const std::string kEvalHelp = with_decision_defaults(
     "  --paper            the paper's matching as written\n"
     "  --k N              mutual nearest neighbours per area (default 10; paper 3)\n"
     "  --min-p-correct P  reject when the calibrated probability of a right answer is below P (default 0: off)\n"
-    "  --min-score S      reject when the best whole-map score is below S (default 0.25)\n"
+    "  --min-score S      reject when the best whole-map score is below S (default {min_score})\n"
     "  --min-agreement A  reject when the maps agree less than A under the best transform (default {min_agreement})\n"
     "  --gate-max-lower-walls W  at or above A, accept on the agreement alone only where the lower wall\n"
     "                     agreement is at most W (default {gate_max_lower_walls}; above 1: always)\n"

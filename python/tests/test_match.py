@@ -109,6 +109,14 @@ def test_the_agreement_gate_is_configurable(robot):
     assert areamatch.Matcher(min_agreement=0.0, gate_max_lower_walls=2.0).match(robot.map, other).ok
     with pytest.raises(ValueError, match="gate_max_lower_walls"):
         areamatch.match(robot.map, other, gate_max_lower_walls=-1.0)
+    # Where the walls agree both ways the gate's other part (unentered rooms' walls and a margin)
+    # is set by name, as `--set` does.
+    names = {p["name"] for p in areamatch.parameters()}
+    assert {"decision.gate_both_ways_min_occupied", "decision.gate_both_ways_min_margin"} <= names
+    off = areamatch.match(robot.map, other, min_agreement=0.0, params={"decision.gate_both_ways_min_occupied": 2.0})
+    assert not off.ok
+    with pytest.raises(ValueError, match="gate_both_ways_min_occupied"):
+        areamatch.match(robot.map, other, params={"decision.gate_both_ways_min_occupied": -1.0})
 
 
 def test_match_without_areas_is_a_rejection_not_a_crash(building):
