@@ -39,6 +39,20 @@ DecisionSample sample(double walls, double rooms, double margin, double overlap_
   return s;
 }
 
+// A result with the signals the agreement gate reads (what acceptance.hpp looks at), score 0.5.
+MatchResult gate_case(double agreement, double reverse_walls, double forward_walls, double overlap_m2, double p,
+                      double margin = 0.05) {
+  MatchResult r;
+  r.score = 0.5;
+  r.margin = margin;
+  r.evidence.agreement = agreement;
+  r.evidence.reverse_wall_agreement = reverse_walls;
+  r.evidence.forward_wall_agreement = forward_walls;
+  r.evidence.overlap_m2 = overlap_m2;
+  r.p_correct = p;
+  return r;
+}
+
 struct Row {
   int source_building, dest_building;
   DecisionSample sample;
@@ -206,14 +220,8 @@ TEST_CASE("the agreement gate opens only where one map's walls are largely unexp
   // map's furniture against a plan: walls agree one way only); where the walls agree both ways the
   // model judges alone — two alike buildings agree like that too.
   const MatcherParams params;
-  MatchResult r;
-  r.score = 0.6;
-  r.margin = 0.05;
-  r.evidence.agreement = 0.85;
-  r.evidence.reverse_wall_agreement = 0.9;
-  r.evidence.forward_wall_agreement = 0.45;  // lab_b-like: the SLAM map's clutter unexplained
-  r.evidence.overlap_m2 = 283.0;             // ... on a whole floor
-  r.p_correct = 0.2;
+  // lab_b-like: the SLAM map's clutter unexplained (forward walls 0.45), on a whole floor (283 m²).
+  MatchResult r = gate_case(0.85, 0.9, 0.45, 283.0, 0.2);
   CHECK(detail::passes_agreement_gate(r, params.decision));
   CHECK(detail::refusal(r, params.decision, true).reason.empty());
   r.evidence.forward_wall_agreement = 0.8;  // both ways: the model alone, and it is not sure
@@ -246,15 +254,8 @@ TEST_CASE("where the walls agree both ways the gate opens only with the unentere
   // A simulated SLAM map of office_d onto its plan (scripts/simulated_set.sh): both wall
   // agreements high, the rooms seen but not entered agreeing too, p_correct 0.80.
   const MatcherParams params;
-  MatchResult r;
-  r.score = 0.44;
-  r.margin = 0.030;
-  r.evidence.agreement = 0.909;
-  r.evidence.reverse_wall_agreement = 0.972;
-  r.evidence.forward_wall_agreement = 0.729;
+  MatchResult r = gate_case(0.909, 0.972, 0.729, 593.0, 0.80, 0.030);
   r.evidence.occupied_wall_agreement = 0.871;
-  r.evidence.overlap_m2 = 593.0;
-  r.p_correct = 0.80;
   CHECK(lower_wall_agreement(r.evidence) > params.decision.gate_max_lower_walls);
   CHECK(detail::passes_agreement_gate(r, params.decision));
   CHECK(detail::refusal(r, params.decision, true).reason.empty());
@@ -291,14 +292,7 @@ TEST_CASE("the agreement gate needs enough shared free space: walls that agree o
   // F5_02, a scan of one office, onto an apartment's scan: agreement 0.874, lower walls 0.31, but
   // 43 m² shared and p_correct 0.09 — the gate alone accepted it before.
   const MatcherParams params;
-  MatchResult r;
-  r.score = 0.5;
-  r.margin = 0.05;
-  r.evidence.agreement = 0.874;
-  r.evidence.reverse_wall_agreement = 0.97;
-  r.evidence.forward_wall_agreement = 0.31;
-  r.evidence.overlap_m2 = 42.9;
-  r.p_correct = 0.09;
+  MatchResult r = gate_case(0.874, 0.97, 0.31, 42.9, 0.09);
   CHECK_FALSE(detail::passes_agreement_gate(r, params.decision));
   const std::string refused = detail::refusal(r, params.decision, true).reason;
   CHECK(refused.find("gate_min_overlap_m2 100") != std::string::npos);
