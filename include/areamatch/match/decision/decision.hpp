@@ -115,7 +115,8 @@ struct DecisionParams {
   double gate_both_ways_min_occupied = 0.85;
   /// ... and needs `MatchResult::margin` at least this: a symmetric building's turned copy agrees
   /// both ways as well as the right answer (a pentagonal floor, 72° apart), and only its margin,
-  /// 0.000–0.006 (the right answers': mostly above 0.01, a few down to 0.0015, which this refuses),
+  /// 0.000–0.006 (the right answers': mostly above 0.01; the few below 0.007, the pentagon's among
+  /// them, are refused here unless the model is sure),
   /// says that the evidence cannot tell them apart. 0.007, chosen with
   /// `gate_both_ways_min_occupied` (docs/evaluation.md).
   double gate_both_ways_min_margin = 0.007;
