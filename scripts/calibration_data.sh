@@ -4,8 +4,7 @@
 # generated sets, the pairs of maps of different buildings in both directions, one
 # `areamatch eval` per set, each writing OUT/<set>/results.csv. Then
 #   build/tools/areamatch calibrate OUT/*/results.csv [--choose-rule --max-false-accept F]
-#   scripts/choose_both_ways_gate.py --predictions PRED.csv --calibration OUT \
-#     --simulated OUT/simulated/set/eval/results.csv OUT/simulated/onto_other_plans/results.csv
+#     [--simulated OUT/simulated/set/eval/results.csv,OUT/simulated/onto_other_plans/results.csv]
 # Runs JOBS evaluations at a time (default: the number of cores). About an hour on 2 cores.
 #   scripts/calibration_data.sh OUT [AREAMATCH_BINARY] [JOBS]
 set -euo pipefail
@@ -69,7 +68,7 @@ echo "rows in $out/*/results.csv"
 
 # Simulated laser-SLAM maps of every shared layout, and each onto the other layouts, in their own
 # folder (not in $out/*/results.csv): they choose the agreement gate's both-ways thresholds
-# (scripts/choose_both_ways_gate.py) but do not train the model (trained on, they cost right answers
+# (`areamatch calibrate ... --simulated`) but do not train the model (trained on, they cost right answers
 # of real hand-held scans: docs/evaluation.md).
 sim="$out/simulated"
 [ -f "$sim/set/eval/results.csv" ] || "$here/scripts/simulated_set.sh" "$sim/set" "$bin" > /dev/null

@@ -603,6 +603,14 @@ TEST_CASE("calibrate: fits the decision on eval results, cross-validated by buil
   const Run off = run("calibrate " + out + "/results.csv --gate-both-ways-occupied 2 --gate-both-ways-margin 0.01", false);
   CHECK(off.status == 0);
   CHECK(off.out.find("(above it: occupied walls >= 2 and margin >= 0.01)") != std::string::npos);
+  // Simulated maps' rows choose the gate's both-ways part and are judged building by building
+  // (here the same generated rows stand in for them).
+  const Run both_ways = run("calibrate " + out + "/results.csv --simulated " + out + "/results.csv", false);
+  INFO(both_ways.out);
+  CHECK(both_ways.status == 0);
+  CHECK(both_ways.out.find("the gate's both-ways part chosen on the generated and simulated rows") != std::string::npos);
+  CHECK(both_ways.out.find("\ntotal | | 3 | ") != std::string::npos);  // its 3 right answers
+  CHECK(run("calibrate " + out + "/results.csv --simulated " + out + "/missing.csv").status == 2);
   CHECK(run("calibrate " + out + "/results.csv --choose-rule --max-false-accept 2").status == 2);
   CHECK(run("calibrate " + out + "/results.csv --choose-on real").out.find("--choose-on needs --choose-rule") != std::string::npos);
   CHECK(run("calibrate " + out + "/results.csv --choose-rule --choose-on some").status == 2);

@@ -1491,6 +1491,10 @@ const std::string kCalibrateHelp = with_decision_defaults(
     "  --gate-both-ways-occupied Q  above W, the gate needs the occupied walls to agree >= Q (default\n"
     "                     {gate_both_ways_min_occupied}; above 1: off; kept, not chosen, by --choose-rule)\n"
     "  --gate-both-ways-margin M  ... and a margin >= M to the best rival (default {gate_both_ways_min_margin}; kept)\n"
+    "  --simulated A.csv,B.csv  eval results of simulated SLAM maps (onto their plans and onto others): they\n"
+    "                     do not train the model; Q and M are chosen on them and the generated rows (no\n"
+    "                     wrong answer accepted, the fewest right ones refused), and they are judged\n"
+    "                     building by building with Q and M chosen without that building\n"
     "  --svg OUT.svg      the reliability diagram of the real buildings' rows (cross-validated)\n"
     "  --predictions OUT.csv  every row with its buildings, label, agreement, the cross-validated and\n"
     "                     the in-sample p_correct and whether the rule accepts it (cross-validated):\n"
@@ -1559,6 +1563,58 @@ void report_chosen_rule(const Args& args, const std::vector<CalibrationRow>& row
             << line("total (nested cross-validation)", nested_total);
 }
 
+/// `calibrate --simulated`: the gate's both-ways thresholds chosen on the generated rows (their
+/// cross-validated p_correct) and the simulated ones (their own, from a model that never saw them),
+/// and the simulated rows judged building by building, each by thresholds chosen without it.
+void report_both_ways_choice(const std::vector<CalibrationRow>& rows, const std::vector<CalibrationRow>& simulated,
+                             const std::vector<std::string>& buildings, const areamatch_cli::JudgingBuildings& judging,
+                             const std::vector<double>& predicted, const Rule& rule) {
+  auto choose_without = [&](int held) {
+    std::vector<const CalibrationRow*> choosing;
+    std::vector<double> p;
+    auto touches = [&](const CalibrationRow& r) { return r.source_building == held || r.dest_building == held; };
+    for (std::size_t i = 0; i < rows.size(); ++i) {
+      if (judging.judged(i) || touches(rows[i])) continue;  // real rows judge, they do not choose
+      choosing.push_back(&rows[i]);
+      p.push_back(predicted[i]);
+    }
+    for (const CalibrationRow& r : simulated) {
+      if (touches(r)) continue;
+      choosing.push_back(&r);
+      p.push_back(r.shipped_p);
+    }
+    return areamatch_cli::choose_both_ways(choosing, p, rule);
+  };
+  const Rule all = choose_without(-1);
+  std::cout << "\nthe gate's both-ways part chosen on the generated and simulated rows (no wrong answer accepted, the "
+               "fewest right ones refused): occupied walls >= "
+            << format_double(all.both_ways_min_occupied) << ", margin >= " << format_double(all.both_ways_min_margin)
+            << " (judged: occupied " << format_double(rule.both_ways_min_occupied) << ", margin "
+            << format_double(rule.both_ways_min_margin) << ")\n"
+            << "simulated maps by building, each judged by thresholds chosen without it:\n"
+               "building | chosen occupied, margin | right answers | right and accepted | wrong transforms | accepted | "
+               "onto other buildings | accepted\n";
+  std::map<int, std::array<std::size_t, 6>> per_building;  // by the simulated map's building
+  for (const CalibrationRow& r : simulated) per_building[r.source_building];
+  std::array<std::size_t, 6> total{};
+  for (auto& [b, c] : per_building) {
+    const Rule held = choose_without(b);
+    for (const CalibrationRow& r : simulated) {
+      if (r.source_building != b) continue;
+      const bool accepted = held.accepts(r, r.shipped_p);
+      const std::size_t column = r.different_buildings ? 4 : r.sample.correct ? 0 : 2;
+      ++c[column];
+      c[column + 1] += accepted;
+    }
+    for (std::size_t k = 0; k < c.size(); ++k) total[k] += c[k];
+    std::cout << buildings[static_cast<std::size_t>(b)] << " | " << format_double(held.both_ways_min_occupied) << ", "
+              << format_double(held.both_ways_min_margin) << " | " << c[0] << " | " << c[1] << " | " << c[2] << " | " << c[3]
+              << " | " << c[4] << " | " << c[5] << "\n";
+  }
+  std::cout << "total | | " << total[0] << " | " << total[1] << " | " << total[2] << " | " << total[3] << " | " << total[4]
+            << " | " << total[5] << "\n";
+}
+
 /// `calibrate`'s reliability tables (cross-validated): all rows, then the real buildings' alone (what
 /// --svg draws).
 void report_reliability(const Args& args, const std::vector<CalibrationRow>& rows, const std::vector<double>& predicted,
@@ -1594,7 +1650,7 @@ void report_reliability(const Args& args, const std::vector<CalibrationRow>& row
 }
 
 int run_calibrate(const std::vector<std::string>& tokens) {
-  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "gate-both-ways-occupied", "gate-both-ways-margin", "svg", "predictions", "max-false-accept", "choose-on"});
+  const Args args(tokens, {"help", "choose-rule"}, {"l2", "accept-p", "min-agreement", "gate-max-lower-walls", "gate-min-overlap", "gate-both-ways-occupied", "gate-both-ways-margin", "simulated", "svg", "predictions", "max-false-accept", "choose-on"});
   if (args.flag("help")) {
     std::cout << kCalibrateHelp;
     return 0;
@@ -1619,7 +1675,20 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     auto more = read_calibration_rows(path, &roles);
     rows.insert(rows.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
   }
+  // Simulated SLAM maps (--simulated): their buildings are assigned with the others' (a simulated
+  // map joins its plan), but they never train the model; they choose the gate's both-ways part.
+  std::vector<CalibrationRow> simulated;
+  for (const auto& path : split_names(args.text("simulated").value_or(""))) {
+    auto more = read_calibration_rows(path, &roles);
+    simulated.insert(simulated.end(), std::make_move_iterator(more.begin()), std::make_move_iterator(more.end()));
+  }
+  const std::size_t calibration_rows = rows.size();
+  rows.insert(rows.end(), std::make_move_iterator(simulated.begin()), std::make_move_iterator(simulated.end()));
   const std::vector<std::string> buildings = assign_buildings(rows);
+  simulated.assign(std::make_move_iterator(rows.begin() + static_cast<std::ptrdiff_t>(calibration_rows)),
+                   std::make_move_iterator(rows.end()));
+  rows.resize(calibration_rows);
+  if (rows.empty()) throw UsageError("no labelled rows in the RESULTS.csv files");
   const areamatch_cli::JudgingBuildings judging = areamatch_cli::judging_buildings(rows, buildings.size(), roles);
   const auto real_buildings = static_cast<std::size_t>(std::count(judging.judges.begin(), judging.judges.end(), 1));
   std::vector<areamatch::DecisionSample> all;
@@ -1682,6 +1751,7 @@ int run_calibrate(const std::vector<std::string>& tokens) {
     }
   }
   if (args.flag("choose-rule")) report_chosen_rule(args, rows, buildings, judging, roles, predicted, l2, base, rule);
+  if (!simulated.empty()) report_both_ways_choice(rows, simulated, buildings, judging, predicted, rule);
   return 0;
 }
 

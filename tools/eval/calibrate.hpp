@@ -17,10 +17,12 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <map>
 #include <numeric>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace areamatch_cli {
@@ -68,6 +70,7 @@ struct CalibrationRow {
   double overlap_m2 = 0.0;   ///< `MatchEvidence::overlap_m2`, which the gate needs enough of
   double occupied_walls = std::nan("");  ///< `MatchEvidence::occupied_wall_agreement` (the gate where walls agree both ways)
   double margin = std::nan("");          ///< `MatchResult::margin` (ditto)
+  double shipped_p = std::nan("");       ///< the row's own p_correct (the model that ran it)
   areamatch::DecisionSample sample;
   int source_building = -1, dest_building = -1;  ///< filled by `assign_buildings`
   /// The two buildings, as `areamatch::leave_one_building_out` takes them.
@@ -178,6 +181,7 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     row.lower_walls = areamatch::lower_wall_agreement(r.evidence);
     row.overlap_m2 = std::isfinite(r.evidence.overlap_m2) ? r.evidence.overlap_m2 : 0.0;
     row.occupied_walls = r.evidence.occupied_wall_agreement;
+    row.shipped_p = value(f, c_p);
     row.margin = r.margin;
     row.sample.correct = !row.different_buildings && f[c_truth] == "true";
     rows.push_back(std::move(row));
@@ -381,6 +385,45 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
           best_accepts = accepts;
           first = false;
         }
+      }
+    }
+  }
+  return best;
+}
+
+/// The both-ways thresholds `choose_both_ways` tries, strict to lenient (occupied above 1: off).
+inline const std::vector<double>& both_ways_occupied_grid() {
+  static const std::vector<double> grid = {2.0, 0.95, 0.9, 0.85, 0.8, 0.75, 0.7};
+  return grid;
+}
+inline const std::vector<double>& both_ways_margin_grid() {
+  static const std::vector<double> grid = {0.05, 0.02, 0.01, 0.007, 0.005, 0.002, 0.0};
+  return grid;
+}
+
+/// `base` with the gate's both-ways thresholds (`Rule::both_ways_min_occupied`, `both_ways_min_margin`)
+/// chosen on `rows` (each judged on `predicted`, one per row): the fewest right answers refused with
+/// no wrong answer accepted — a symmetric building's turned copy is as wrong as another building —
+/// ties to the stricter; when no choice accepts none, the fewest accepted.
+inline Rule choose_both_ways(const std::vector<const CalibrationRow*>& rows, const std::vector<double>& predicted,
+                             const Rule& base) {
+  Rule best = base;
+  std::pair<std::size_t, std::size_t> best_key{std::numeric_limits<std::size_t>::max(), 0};
+  for (double occupied : both_ways_occupied_grid()) {
+    for (double margin : both_ways_margin_grid()) {
+      Rule rule = base;
+      rule.both_ways_min_occupied = occupied;
+      rule.both_ways_min_margin = margin;
+      std::size_t refused = 0, accepted_wrong = 0;
+      for (std::size_t k = 0; k < rows.size(); ++k) {
+        const bool accepted = rule.accepts(*rows[k], predicted[k]);
+        refused += rows[k]->sample.correct && !accepted;
+        accepted_wrong += !rows[k]->sample.correct && accepted;
+      }
+      const std::pair<std::size_t, std::size_t> key{accepted_wrong, refused};
+      if (key < best_key) {  // strict to lenient: a tie keeps the stricter
+        best = rule;
+        best_key = key;
       }
     }
   }

@@ -110,8 +110,9 @@ struct DecisionParams {
   /// not in the rooms seen but not entered; a simulated or clean SLAM map of the plan's building
   /// agrees in both (docs/evaluation.md, "Where the walls agree both ways"). 0.85: on the rows of
   /// `scripts/calibration_data.sh` and its simulated SLAM sets, the wrong answers in this region
-  /// reach 0.771 and every value from 0.78 to 0.85 accepts and refuses the same rows; the choice,
-  /// left out layout by layout, keeps the strictest. Above 1: this part of the gate is off.
+  /// reach 0.771 and every value from 0.78 to 0.85 accepts and refuses the same rows; the choice
+  /// (`areamatch calibrate --simulated`), left out plan by plan, keeps the strictest. Above 1: this
+  /// part of the gate is off.
   double gate_both_ways_min_occupied = 0.85;
   /// ... and needs `MatchResult::margin` at least this: a symmetric building's turned copy agrees
   /// both ways as well as the right answer (a pentagonal floor, 72° apart), and only its margin,
