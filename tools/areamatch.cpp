@@ -1543,14 +1543,14 @@ void report_chosen_rule(const Args& args, const std::vector<CalibrationRow>& row
   }
   std::map<std::array<double, 4>, int> folds;
   for (const Rule& fold_rule : chosen) {
-    ++folds[{fold_rule.min_agreement, fold_rule.max_lower_walls, fold_rule.min_overlap_m2, fold_rule.accept_p}];
+    ++folds[{fold_rule.gate.min_agreement, fold_rule.gate.gate_max_lower_walls, fold_rule.gate.gate_min_overlap_m2, fold_rule.accept_p}];
   }
   std::cout << "\nrule chosen on all rows (at most " << format_double(max_false_accept)
             << " of the wrong answers accepted, leave-one-building-out predictions): agreement >= "
-            << format_double(shipped.min_agreement) << " with lower wall agreement <= "
-            << format_double(shipped.max_lower_walls) << " on at least " << format_fixed(shipped.min_overlap_m2, 0)
-            << " m2 shared (above it: occupied walls >= " << format_double(shipped.both_ways_min_occupied)
-            << " and margin >= " << format_double(shipped.both_ways_min_margin) << ", given), or p_correct >= "
+            << format_double(shipped.gate.min_agreement) << " with lower wall agreement <= "
+            << format_double(shipped.gate.gate_max_lower_walls) << " on at least " << format_fixed(shipped.gate.gate_min_overlap_m2, 0)
+            << " m2 shared (above it: occupied walls >= " << format_double(shipped.gate.gate_both_ways_min_occupied)
+            << " and margin >= " << format_double(shipped.gate.gate_both_ways_min_margin) << ", given), or p_correct >= "
             << format_double(shipped.accept_p)
             << " (above 1: off)\nrules chosen in the " << chosen.size() << " folds:";
   for (const auto& [thresholds, n] : folds) {
@@ -1588,9 +1588,9 @@ void report_both_ways_choice(const std::vector<CalibrationRow>& rows, const std:
   const Rule all = choose_without(-1);
   std::cout << "\nthe gate's both-ways part chosen on the generated and simulated rows (no wrong answer accepted, the "
                "fewest right ones refused): occupied walls >= "
-            << format_double(all.both_ways_min_occupied) << ", margin >= " << format_double(all.both_ways_min_margin)
-            << " (judged: occupied " << format_double(rule.both_ways_min_occupied) << ", margin "
-            << format_double(rule.both_ways_min_margin) << ")\n"
+            << format_double(all.gate.gate_both_ways_min_occupied) << ", margin >= " << format_double(all.gate.gate_both_ways_min_margin)
+            << " (judged: occupied " << format_double(rule.gate.gate_both_ways_min_occupied) << ", margin "
+            << format_double(rule.gate.gate_both_ways_min_margin) << ")\n"
             << "simulated maps by building, each judged by thresholds chosen without it:\n"
                "building | chosen occupied, margin | right answers | right and accepted | wrong transforms | accepted | "
                "onto other buildings | accepted\n";
@@ -1607,8 +1607,8 @@ void report_both_ways_choice(const std::vector<CalibrationRow>& rows, const std:
       c[column + 1] += accepted;
     }
     for (std::size_t k = 0; k < c.size(); ++k) total[k] += c[k];
-    std::cout << buildings[static_cast<std::size_t>(b)] << " | " << format_double(held.both_ways_min_occupied) << ", "
-              << format_double(held.both_ways_min_margin) << " | " << c[0] << " | " << c[1] << " | " << c[2] << " | " << c[3]
+    std::cout << buildings[static_cast<std::size_t>(b)] << " | " << format_double(held.gate.gate_both_ways_min_occupied) << ", "
+              << format_double(held.gate.gate_both_ways_min_margin) << " | " << c[0] << " | " << c[1] << " | " << c[2] << " | " << c[3]
               << " | " << c[4] << " | " << c[5] << "\n";
   }
   std::cout << "total | | " << total[0] << " | " << total[1] << " | " << total[2] << " | " << total[3] << " | " << total[4]
@@ -1698,8 +1698,17 @@ int run_calibrate(const std::vector<std::string>& tokens) {
   std::vector<double> in_sample;
   for (const auto& r : rows) in_sample.push_back(areamatch::p_correct(r.sample.features, fitted));
 
-  const Rule rule{base.accept_p_correct, gate, gate_walls, gate_overlap, both_ways_occupied, both_ways_margin},
-      model_half{0.5, 2.0}, gate_alone{2.0, gate, gate_walls, gate_overlap, both_ways_occupied, both_ways_margin};
+  // The rule judged: the model at accept_p, else the agreement gate with these thresholds; the
+  // other rules beside it: the model alone at 0.5 (gate shut: no agreement reaches 2), the gate alone.
+  areamatch::DecisionParams gate_thresholds;
+  gate_thresholds.min_agreement = gate;
+  gate_thresholds.gate_max_lower_walls = gate_walls;
+  gate_thresholds.gate_min_overlap_m2 = gate_overlap;
+  gate_thresholds.gate_both_ways_min_occupied = both_ways_occupied;
+  gate_thresholds.gate_both_ways_min_margin = both_ways_margin;
+  areamatch::DecisionParams shut = gate_thresholds;
+  shut.min_agreement = 2.0;
+  const Rule rule{base.accept_p_correct, gate_thresholds}, model_half{0.5, shut}, gate_alone{2.0, gate_thresholds};
   std::vector<DecisionCounts> per_building(buildings.size());
   DecisionCounts cv_total, in_sample_total, cv_model_half, gate_only;
   std::vector<signed char> cv_accepted(rows.size());

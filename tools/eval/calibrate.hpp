@@ -8,6 +8,7 @@
 #include "eval_report.hpp"
 #include "manifest.hpp"
 #include <areamatch/detail/format.hpp>
+#include <areamatch/match/decision/acceptance.hpp>
 #include <areamatch/match/decision/decision.hpp>
 
 #include <algorithm>
@@ -65,12 +66,11 @@ inline MapRole role_of(const MapRoles& roles, const std::string& map) {
 struct CalibrationRow {
   std::string name, kind, source, destination;
   bool different_buildings = false;
-  double agreement = 0.0;    ///< MatchEvidence::agreement, for the rule's agreement gate
-  double lower_walls = 0.0;  ///< `areamatch::lower_wall_agreement`, which limits the gate
-  double overlap_m2 = 0.0;   ///< `MatchEvidence::overlap_m2`, which the gate needs enough of
-  double occupied_walls = std::nan("");  ///< `MatchEvidence::occupied_wall_agreement` (the gate where walls agree both ways)
-  double margin = std::nan("");          ///< `MatchResult::margin` (ditto)
-  double shipped_p = std::nan("");       ///< the row's own p_correct (the model that ran it)
+  /// What the agreement gate reads (`areamatch::detail::passes_agreement_gate`): the row's evidence
+  /// (the shared free space 0 where not measured) and its margin.
+  areamatch::MatchEvidence evidence;
+  double margin = std::nan("");
+  double shipped_p = std::nan("");  ///< the row's own p_correct (the model that ran it)
   areamatch::DecisionSample sample;
   int source_building = -1, dest_building = -1;  ///< filled by `assign_buildings`
   /// The two buildings, as `areamatch::leave_one_building_out` takes them.
@@ -177,12 +177,11 @@ inline std::vector<CalibrationRow> read_calibration_rows(const std::string& path
     r.evidence.occupied_wall_agreement = value(f, c_occupied);
     r.margin = value(f, c_margin);
     row.sample.features = areamatch::decision_features(r);
-    row.agreement = value(f, c_agreement);
-    row.lower_walls = areamatch::lower_wall_agreement(r.evidence);
-    row.overlap_m2 = std::isfinite(r.evidence.overlap_m2) ? r.evidence.overlap_m2 : 0.0;
-    row.occupied_walls = r.evidence.occupied_wall_agreement;
-    row.shipped_p = value(f, c_p);
+    row.evidence = r.evidence;
+    row.evidence.agreement = value(f, c_agreement);
+    if (!std::isfinite(row.evidence.overlap_m2)) row.evidence.overlap_m2 = 0.0;
     row.margin = r.margin;
+    row.shipped_p = value(f, c_p);
     row.sample.correct = !row.different_buildings && f[c_truth] == "true";
     rows.push_back(std::move(row));
   }
@@ -293,18 +292,14 @@ inline std::vector<double> leave_one_building_out(const std::vector<CalibrationR
   return areamatch::leave_one_building_out(samples, buildings, l2, base);
 }
 
-/// The matcher's rule: accepted at p_correct ≥ accept_p, or at agreement ≥ min_agreement on at
-/// least min_overlap_m2 of shared free space when the lower wall agreement (`walls_worst`) is at
-/// most max_lower_walls (above 1: always) or, above it, the occupied walls agree at least
-/// both_ways_min_occupied with a margin of at least both_ways_min_margin (the library's
-/// `detail::passes_agreement_gate`).
+/// The matcher's rule: accepted at p_correct ≥ accept_p, or where the agreement gate of `gate`
+/// lets the answer through (the library's `detail::passes_agreement_gate`: agreement, shared free
+/// space, lower wall agreement, or where the walls agree both ways the occupied walls and margin).
 struct Rule {
-  double accept_p = 0.9, min_agreement = 0.835, max_lower_walls = 2.0, min_overlap_m2 = 0.0;
-  double both_ways_min_occupied = 2.0, both_ways_min_margin = 0.0;
+  double accept_p = 0.9;
+  areamatch::DecisionParams gate;  ///< its agreement gate's thresholds (the rest is not read)
   bool accepts(const CalibrationRow& r, double p) const {
-    return p >= accept_p ||
-           (r.agreement >= min_agreement && r.overlap_m2 >= min_overlap_m2 &&
-            (r.lower_walls <= max_lower_walls || (r.occupied_walls >= both_ways_min_occupied && r.margin >= both_ways_min_margin)));
+    return p >= accept_p || areamatch::detail::passes_agreement_gate(r.evidence, r.margin, gate);
   }
 };
 
@@ -323,7 +318,7 @@ inline std::string predictions_csv(const std::vector<CalibrationRow>& rows, cons
         << areamatch::detail::csv_field(buildings[static_cast<std::size_t>(r.source_building)]) << ','
         << areamatch::detail::csv_field(buildings[static_cast<std::size_t>(r.dest_building)]) << ','
         << (r.different_buildings ? "true" : "false") << ',' << (r.sample.correct ? "true" : "false") << ','
-        << areamatch::detail::format_double(r.agreement) << ',' << areamatch::detail::format_double(cross_validated[i]) << ','
+        << areamatch::detail::format_double(r.evidence.agreement) << ',' << areamatch::detail::format_double(cross_validated[i]) << ','
         << areamatch::detail::format_double(in_sample[i])
         << ',' << (rule.accepts(r, cross_validated[i]) ? "true" : "false") << '\n';
   }
@@ -364,8 +359,10 @@ inline Rule choose_rule(const std::vector<CalibrationRow>& rows, const std::vect
   for (double accept_p : accept_p_grid()) {
     for (double min_agreement : min_agreement_grid()) {
       for (double max_lower_walls : max_lower_walls_grid()) {
-        const Rule rule{accept_p, min_agreement, max_lower_walls, given.min_overlap_m2, given.both_ways_min_occupied,
-                        given.both_ways_min_margin};
+        Rule rule = given;
+        rule.accept_p = accept_p;
+        rule.gate.min_agreement = min_agreement;
+        rule.gate.gate_max_lower_walls = max_lower_walls;
         std::size_t rejects = 0, accepts = 0;
         for (std::size_t k = 0; k < subset.size(); ++k) {
           const CalibrationRow& r = rows[subset[k]];
@@ -401,7 +398,7 @@ inline const std::vector<double>& both_ways_margin_grid() {
   return grid;
 }
 
-/// `base` with the gate's both-ways thresholds (`Rule::both_ways_min_occupied`, `both_ways_min_margin`)
+/// `base` with the gate's both-ways thresholds (`gate_both_ways_min_occupied`, `gate_both_ways_min_margin`)
 /// chosen on `rows` (each judged on `predicted`, one per row): the fewest right answers refused with
 /// no wrong answer accepted — a symmetric building's turned copy is as wrong as another building —
 /// ties to the stricter; when no choice accepts none, the fewest accepted.
@@ -412,8 +409,8 @@ inline Rule choose_both_ways(const std::vector<const CalibrationRow*>& rows, con
   for (double occupied : both_ways_occupied_grid()) {
     for (double margin : both_ways_margin_grid()) {
       Rule rule = base;
-      rule.both_ways_min_occupied = occupied;
-      rule.both_ways_min_margin = margin;
+      rule.gate.gate_both_ways_min_occupied = occupied;
+      rule.gate.gate_both_ways_min_margin = margin;
       std::size_t refused = 0, accepted_wrong = 0;
       for (std::size_t k = 0; k < rows.size(); ++k) {
         const bool accepted = rule.accepts(*rows[k], predicted[k]);

@@ -18,21 +18,26 @@
 namespace areamatch::detail {
 
 /// Whether the walls agree both ways well enough for the gate to open there: the walls of rooms
-/// seen but not entered agree too (`gate_both_ways_min_occupied`) and no rival comes close
-/// (`gate_both_ways_min_margin`).
-inline bool both_ways_agreement_holds(const MatchResult& result, const DecisionParams& rule) {
-  return result.evidence.occupied_wall_agreement >= rule.gate_both_ways_min_occupied &&
-         result.margin >= rule.gate_both_ways_min_margin;
+/// seen but not entered agree too (`gate_both_ways_min_occupied`) and no rival comes within
+/// `margin` (`gate_both_ways_min_margin`).
+inline bool both_ways_agreement_holds(const MatchEvidence& evidence, double margin, const DecisionParams& rule) {
+  return evidence.occupied_wall_agreement >= rule.gate_both_ways_min_occupied && margin >= rule.gate_both_ways_min_margin;
 }
 
 /// Whether the agreement gate lets an answer through whatever the model says: the maps agree
 /// (`min_agreement`) and share enough free space for that to mean something
 /// (`gate_min_overlap_m2`), and either one map's walls are largely unexplained by the other's
-/// (`gate_max_lower_walls`) or, where they agree both ways, `both_ways_agreement_holds`.
-inline bool passes_agreement_gate(const MatchResult& result, const DecisionParams& rule) {
-  const MatchEvidence& evidence = result.evidence;
+/// (`gate_max_lower_walls`) or, where they agree both ways, `both_ways_agreement_holds`. From the
+/// signals alone (`evidence`, the answer's `margin`), so that `areamatch calibrate` judges its
+/// rows by the same rule.
+inline bool passes_agreement_gate(const MatchEvidence& evidence, double margin, const DecisionParams& rule) {
   return evidence.agreement >= rule.min_agreement && evidence.overlap_m2 >= rule.gate_min_overlap_m2 &&
-         (lower_wall_agreement(evidence) <= rule.gate_max_lower_walls || both_ways_agreement_holds(result, rule));
+         (lower_wall_agreement(evidence) <= rule.gate_max_lower_walls || both_ways_agreement_holds(evidence, margin, rule));
+}
+
+/// `passes_agreement_gate` of a result.
+inline bool passes_agreement_gate(const MatchResult& result, const DecisionParams& rule) {
+  return passes_agreement_gate(result.evidence, result.margin, rule);
 }
 
 /// A refusal: its reason (empty when accepted) and what it says of the maps.
