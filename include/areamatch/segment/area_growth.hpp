@@ -2,10 +2,13 @@
 /// \file segment/area_growth.hpp
 /// Steps 1–3 of `build_areas`: every passage sealed with a line of barrier cells, then every
 /// skeleton region grown over free space from its samples (the core first, then the fringe), and
-/// the barrier cells given to a neighbouring region.
+/// the barrier cells given to a neighbouring region. One image of working labels says all the
+/// growth needs per cell — free or not, core or not, sealed, reached — so neither the free-space
+/// mask nor the core is kept beside it.
 
 #include "../detail/run_components.hpp"
 #include "binarize.hpp"
+#include "morphology.hpp"
 #include "rooms.hpp"
 
 #include <Eigen/Core>
@@ -46,66 +49,83 @@ inline std::array<std::ptrdiff_t, 4> four_neighbour_offsets(int W) {
   return {1, -1, static_cast<std::ptrdiff_t>(W), -static_cast<std::ptrdiff_t>(W)};
 }
 
-/// The first step of labelling, done on runs instead of cells. `label` holds only the seeds
-/// (listed in `seeds`); growth from them runs over the cells of `core` (barrier cells already
-/// taken out), 4-connected. A connected piece of the core that the seeds of just one region touch
-/// ends up wholly in that region, whatever the order of growth: such pieces are labelled here and
-/// cleared from `core`. Pieces that seeds of several regions touch are left for the cell-by-cell
-/// growth, which decides their borders by distance exactly as before.
+/// The working labels while areas are built: a region id (≥ 0) per cell of the cropped mask, or
+/// one of these; held as `Label`, 16 bits when the region ids fit (`build_areas`). A free cell not
+/// yet reached is `unlabelled` or, in the core (free cells at least the skeleton's clearance from
+/// every wall, where growth runs first), `open_core`.
+inline constexpr int unlabelled = -1, open_core = -2, barrier = -3, not_free = -4;
+
+/// Whether a working label is a free cell no region has reached yet.
+inline bool unreached(int label) { return label == unlabelled || label == open_core; }
+
+/// The working labels before growth: each cell `not_free`, `unlabelled` or `open_core`, from the
+/// free-space mask and its erosion by `core_distance` cells (`erode_rows`, a band at a time).
 template <class Label>
-void fill_uncontested_core(std::vector<std::uint8_t>& core, std::vector<Label>& label, const std::vector<std::uint32_t>& seeds,
-                           int W, int H) {
-  const RunComponents pieces = run_components(core, W, H, 1, false);
-  constexpr int unreached = -1, contested = -2;
-  std::vector<int> region_of_piece(pieces.runs.size(), unreached);
+std::vector<Label> initial_labels(const FreeSpace& space, double core_distance) {
+  const auto W = static_cast<std::size_t>(space.width);
+  std::vector<Label> label(W * static_cast<std::size_t>(space.height));
+  erode_rows(space.free.data(), space.width, space.height, core_distance, [&](int r, const std::uint8_t* core) {
+    const std::uint8_t* free = &space.free[static_cast<std::size_t>(r) * W];
+    Label* out = &label[static_cast<std::size_t>(r) * W];
+    for (std::size_t c = 0; c < W; ++c) {
+      out[c] = static_cast<Label>(core[c] ? open_core : free[c] ? unlabelled : not_free);
+    }
+  });
+  return label;
+}
+
+/// The first step of labelling, done on runs instead of cells. `core_pieces` are the connected
+/// pieces of the open core (barrier cells already taken out), found before `seed_cells` were
+/// labelled; growth from the seeds runs over the open core, 4-connected. A piece that the seeds
+/// of just one region touch ends up wholly in that region, whatever the order of growth: such
+/// pieces are labelled here, so they are no longer open. Pieces that seeds of several regions
+/// touch are left for the cell-by-cell growth, which decides their borders by distance.
+template <class Label>
+void fill_uncontested_core(const RunComponents& core_pieces, std::vector<Label>& label,
+                           const std::vector<std::uint32_t>& seed_cells, int W) {
+  constexpr int unreached_piece = -1, contested = -2;
+  std::vector<int> region_of_piece(core_pieces.runs.size(), unreached_piece);
   auto touch = [&](std::size_t cell, int region) {
-    const std::size_t run = pieces.run_at(static_cast<int>(cell % W), static_cast<int>(cell / W));
+    const std::size_t run = core_pieces.run_at(static_cast<int>(cell % W), static_cast<int>(cell / W));
     if (run == RunComponents::none) return false;
-    int& slot = region_of_piece[pieces.component[run]];
-    if (slot == unreached) slot = region;
+    int& slot = region_of_piece[core_pieces.component[run]];
+    if (slot == unreached_piece) slot = region;
     else if (slot != region) slot = contested;
     return true;
   };
-  for (std::uint32_t seed : seeds) {
+  for (std::uint32_t seed : seed_cells) {
     const int region = label[seed];
     if (touch(seed, region)) continue;
-    // A seed off the passable cells grows into every passable neighbour. Seeds are free cells
-    // and the mask's border is obstacle, so all four neighbours exist.
+    // A seed off the core grows into every core neighbour. Seeds are free cells and the mask's
+    // border is not free, so all four neighbours exist.
     for (std::ptrdiff_t d : four_neighbour_offsets(W)) {
       touch(static_cast<std::size_t>(static_cast<std::ptrdiff_t>(seed) + d), region);
     }
   }
-  for (std::size_t i = 0; i < pieces.runs.size(); ++i) {
-    const int region = region_of_piece[pieces.component[i]];
+  for (std::size_t i = 0; i < core_pieces.runs.size(); ++i) {
+    const int region = region_of_piece[core_pieces.component[i]];
     if (region < 0) continue;
-    const CellRun& run = pieces.runs[i];
+    const CellRun& run = core_pieces.runs[i];
     const auto from = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.begin);
     const auto to = static_cast<std::ptrdiff_t>(static_cast<std::size_t>(run.row) * W + run.end);
     std::fill(label.begin() + from, label.begin() + to, static_cast<Label>(region));
-    std::fill(core.begin() + from, core.begin() + to, std::uint8_t{0});
   }
 }
 
-/// The labels while areas are built: a region id (≥ 0) per cell of the cropped mask, or one of
-/// these; held as `Label`, 16 bits when the region ids fit (`build_areas`).
-inline constexpr int unlabelled = -1, barrier = -2;
-
-/// Step 1: seals every passage with a line of barrier cells (marked in `label`, taken out of
-/// `core`), so growth cannot cross it. Doors are sealed one cell beyond both walls; junction
-/// spokes start at the junction. Returns the barrier cells, ascending.
+/// Step 1: seals every passage with a line of barrier cells (marked in `label`, so also out of
+/// the open core), so growth cannot cross it. Doors are sealed one cell beyond both walls;
+/// junction spokes start at the junction. Returns the barrier cells, ascending.
 template <class Label>
-std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetection& rooms, std::vector<Label>& label,
-                                         std::vector<std::uint8_t>& core) {
+std::vector<std::uint32_t> seal_passages(const FreeSpace& space, const RoomDetection& rooms, std::vector<Label>& label) {
   const int W = space.width;
   std::vector<std::uint32_t> barrier_cells;
   for (const auto& p : rooms.passages) {
     const Eigen::Vector2d direction = (p.line_b - p.line_a).normalized();
     supercover_line(p.junction ? p.line_a : Eigen::Vector2d(p.line_a - direction), p.line_b + direction, [&](int c, int r) {
-      if (!space.is_free(c, r)) return;
+      if (c < 0 || r < 0 || c >= W || r >= space.height) return;
       const std::size_t i = static_cast<std::size_t>(r) * W + c;
-      if (label[i] == barrier) return;
+      if (label[i] == barrier || label[i] == not_free) return;
       label[i] = static_cast<Label>(barrier);
-      core[i] = 0;  // growth never enters a barrier cell
       barrier_cells.push_back(static_cast<std::uint32_t>(i));
     });
   }
@@ -135,67 +155,51 @@ inline std::vector<Seed> region_seeds(const FreeSpace& space, const RoomDetectio
   return seeds;
 }
 
-/// Step 2: grows every region from its seeds (`region_seeds`), 4-connected: first over the core,
-/// then `fringe_steps` rings of cells into thinner space (corners and cracks; laser streaks only
-/// that far). The mask's border is obstacle, so a free cell's four neighbours are always inside it.
+/// Step 2: grows every region from its seeds (`region_seeds`) over the working labels
+/// (`initial_labels`, passages sealed), 4-connected: first over the core, then `fringe_steps`
+/// rings of cells into thinner space (corners and cracks; laser streaks only that far). The mask's
+/// border is not free, so a free cell's four neighbours are always inside it.
 template <class Label>
-void grow_regions(const FreeSpace& space, const std::vector<Seed>& seeds, int fringe_steps, std::vector<Label>& label,
-                  std::vector<std::uint8_t>& core) {
-  const int W = space.width, H = space.height;
-  std::vector<std::uint32_t> queue;
+void grow_regions(int W, int H, const std::vector<Seed>& seeds, int fringe_steps, std::vector<Label>& label) {
+  // Most core pieces are reached by one region only: those are filled run by run, so the
+  // cell-by-cell growth only settles the contested ones — with the same result, since growth
+  // never crosses from one piece into another. The pieces are found before the seeds are
+  // labelled: a seed in the core belongs to its piece.
+  const RunComponents core_pieces = run_components_of(label, W, H, static_cast<Label>(open_core), false);
+  std::vector<std::uint32_t> frontier, next;
   for (const Seed& seed : seeds) {
-    if (label[seed.cell] != unlabelled) continue;  // a barrier, or seeded already
+    if (!unreached(label[seed.cell])) continue;  // a barrier, or seeded already
     label[seed.cell] = static_cast<Label>(seed.region);
-    queue.push_back(seed.cell);
+    frontier.push_back(seed.cell);
   }
   const auto neighbour_offset = four_neighbour_offsets(W);
-  // Breadth-first growth; into_fringe grows one step (one ring of cells) per call. Over the core,
-  // a cell is taken out of `core` when it is labelled, so `core` alone says what is still open.
-  auto grow = [&](std::vector<std::uint32_t>& frontier, bool into_fringe) {
-    std::vector<std::uint32_t> next;
-    for (std::size_t head = 0; head < frontier.size(); ++head) {
-      const std::size_t i = frontier[head];
+  // Breadth-first, one ring of cells per call: over the core, into `open_core` cells only; into
+  // the fringe, into any free cell not reached yet.
+  auto grow_ring = [&](bool into_fringe) {
+    next.clear();
+    for (const std::uint32_t i : frontier) {
       for (std::ptrdiff_t d : neighbour_offset) {
         const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
-        if (into_fringe) {
-          if (label[j] != unlabelled || !space.free[j]) continue;
-        } else {
-          if (!core[j]) continue;
-          core[j] = 0;
-        }
+        if (into_fringe ? !unreached(label[j]) : label[j] != open_core) continue;
         label[j] = label[i];
-        (into_fringe ? next : frontier).push_back(static_cast<std::uint32_t>(j));
+        next.push_back(static_cast<std::uint32_t>(j));
       }
     }
     frontier.swap(next);
   };
-  // Most core components are reached by one region only: those are filled run by run and taken
-  // out of `core`, so the cell-by-cell growth only settles the contested ones — with the same
-  // result, since growth never crosses from one component into another.
-  fill_uncontested_core(core, label, queue, W, H);
-  for (std::uint32_t seed : queue) core[seed] = 0;  // labelled: no longer open
-  grow(queue, false);
-  queue.clear();
-  // The fringe starts from labelled cells next to unlabelled free space (labelled cells are
-  // free: only free runs are looked at).
-  for (int r = 0; r < H; ++r) {
-    const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
-    for (int c = find_byte_equal(free_row, 0, W, 1); c < W; c = find_byte_equal(free_row, c, W, 1)) {
-      const int end = find_byte_not_equal(free_row, c, W, 1);
-      for (; c < end; ++c) {
-        const std::size_t i = static_cast<std::size_t>(r) * W + c;
-        if (label[i] < 0) continue;
-        for (std::ptrdiff_t d : neighbour_offset) {
-          const std::size_t j = static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d);
-          if (label[j] == unlabelled && space.free[j]) {
-            queue.push_back(static_cast<std::uint32_t>(i));
-            break;
-          }
-        }
+  fill_uncontested_core(core_pieces, label, frontier, W);
+  while (!frontier.empty()) grow_ring(false);
+  // The fringe starts from labelled cells next to free space not reached yet.
+  for (std::size_t i = 0, N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H); i < N; ++i) {
+    if (label[i] < 0) continue;
+    for (std::ptrdiff_t d : neighbour_offset) {
+      if (unreached(label[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d)])) {
+        frontier.push_back(static_cast<std::uint32_t>(i));
+        break;
       }
     }
   }
-  for (int ring = 0; ring < fringe_steps && !queue.empty(); ++ring) grow(queue, true);
+  for (int ring = 0; ring < fringe_steps && !frontier.empty(); ++ring) grow_ring(true);
 }
 
 /// Step 3: each barrier cell joins the region most of its neighbours belong to (ties: the lower id).

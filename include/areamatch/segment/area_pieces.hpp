@@ -28,18 +28,16 @@ struct LabelRuns {
   std::vector<std::size_t> row_start;
 };
 
-/// Step 4: the labelled cells as runs (labelled cells are free: non-free stretches are skipped).
+/// Step 4: the labelled cells (labels ≥ 0; `W` x `H`, row-major) as runs of equal label.
 template <class Label>
-LabelRuns label_runs(const FreeSpace& space, const std::vector<Label>& label) {
-  const int W = space.width, H = space.height;
+LabelRuns label_runs(const std::vector<Label>& label, int W, int H) {
   LabelRuns out;
   out.row_start.assign(static_cast<std::size_t>(H) + 1, 0);
   for (int r = 0; r < H; ++r) {
     out.row_start[r] = out.runs.size();
-    const Label* row = &label[static_cast<std::size_t>(r) * W];
-    const std::uint8_t* free_row = &space.free[static_cast<std::size_t>(r) * W];
+    const Label* row = &label[static_cast<std::size_t>(r) * static_cast<std::size_t>(W)];
     int c = 0;
-    while ((c = find_byte_equal(free_row, c, W, 1)) < W) {
+    while (c < W) {
       const int l = row[c];
       int end = c + 1;
       while (end < W && row[end] == l) ++end;

@@ -41,30 +41,33 @@ namespace areamatch {
 
 namespace detail {
 
-/// Steps 1–4 on working labels of type `Label` (a region id or `unlabelled`/`barrier` per cell
+/// Steps 1–4 on working labels of type `Label` (`initial_labels`: a region id or a state per cell
 /// of the free space's extent): passages sealed, regions grown from `seeds` over the core and then
 /// the fringe, barrier cells assigned, and the result as runs — the working labels and the seeds
-/// are let go on return.
+/// are let go on return. With `release`, the free-space mask (`release->free`, the same object as
+/// `space`) is let go once the labels hold it: growth reads only the labels.
 template <class Label>
 LabelRuns grow_labels(const FreeSpace& space, const RoomDetection& rooms, std::vector<Seed> seeds, const AreaParams& params,
-                      double res) {
+                      double res, FreeSpace* release) {
+  const int W = space.width, H = space.height;
   // The core: free cells at least min_clearance from every wall, where the skeleton lives.
-  std::vector<std::uint8_t> core = erode(space, params.min_clearance_m / res + 0.5);
-  std::vector<Label> label(static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height),
-                           static_cast<Label>(unlabelled));
-  const std::vector<std::uint32_t> barrier_cells = seal_passages(space, rooms, label, core);
+  std::vector<Label> label = initial_labels<Label>(space, params.min_clearance_m / res + 0.5);
+  if (release) std::vector<std::uint8_t>().swap(release->free);
+  const std::vector<std::uint32_t> barrier_cells = seal_passages(space, rooms, label);
   const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
-  grow_regions(space, seeds, fringe_steps, label, core);
+  grow_regions(W, H, seeds, fringe_steps, label);
   std::vector<Seed>().swap(seeds);
-  std::vector<std::uint8_t>().swap(core);
-  assign_barrier_cells(barrier_cells, space.width, label);
-  return label_runs(space, label);
+  assign_barrier_cells(barrier_cells, W, label);
+  return label_runs(label, W, H);
 }
 
 /// `build_areas` from what it reads of the rooms: their passages and region count (`rooms`;
 /// its sample graph is not read), the regions' seeds and the facts of steps 10–11.
+/// With `release` (the same object as `space`), its mask is let go once the labels hold it; only
+/// its extent is read after.
 inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
-                                  std::vector<Seed> seeds, const RoomFacts& facts, const AreaParams& params) {
+                                  std::vector<Seed> seeds, const RoomFacts& facts, const AreaParams& params,
+                                  FreeSpace* release = nullptr) {
   params.validate();
   const std::size_t N = static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height);
   const double res = grid.resolution();
@@ -79,8 +82,8 @@ inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& sp
 
   // 16-bit working labels when the region ids fit: on a large floor they were the largest buffer.
   LabelRuns runs = rooms.region_count() < std::numeric_limits<std::int16_t>::max()
-                       ? grow_labels<std::int16_t>(space, rooms, std::move(seeds), params, res)
-                       : grow_labels<std::int32_t>(space, rooms, std::move(seeds), params, res);
+                       ? grow_labels<std::int16_t>(space, rooms, std::move(seeds), params, res, release)
+                       : grow_labels<std::int32_t>(space, rooms, std::move(seeds), params, res, release);
   const Pieces pieces = find_pieces(runs);
   const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
   const PieceAreas areas = merge_small_pieces(runs, pieces, min_cells);
@@ -94,14 +97,15 @@ inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& sp
 }
 
 /// `build_areas` that lets go of `rooms`' sample graph (and its samples' regions) before the
-/// labels are made: what `VoronoiSegmenter::segment` uses, which returns only the graph.
-inline AreaGraph build_areas_releasing(const OccupancyGrid& grid, const FreeSpace& space, RoomDetection& rooms,
+/// labels are made, and of the free-space mask once the labels hold it (`space.free` is empty on
+/// return): what `VoronoiSegmenter::segment` uses, which returns only the graph.
+inline AreaGraph build_areas_releasing(const OccupancyGrid& grid, FreeSpace& space, RoomDetection& rooms,
                                        const AreaParams& params) {
   std::vector<Seed> seeds = region_seeds(space, rooms);
   const RoomFacts facts = room_facts(rooms);
   rooms.graph = SampleGraph{};
   std::vector<int>().swap(rooms.region_of_sample);
-  return build_areas_from(grid, space, rooms, std::move(seeds), facts, params);
+  return build_areas_from(grid, space, rooms, std::move(seeds), facts, params, &space);
 }
 
 }  // namespace detail

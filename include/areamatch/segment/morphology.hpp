@@ -49,67 +49,104 @@ inline void and_both_at_least(std::uint8_t* __restrict out, const std::uint8_t* 
   for (int k = 0; k < count; ++k) out[k] &= static_cast<std::uint8_t>((left[k] >= n) & (right[k] >= n));
 }
 
-/// Cells of `mask` with no cell outside it closer than `distance` (in cells, centre to centre):
-/// the erosion by a disc. Works on byte column distances and a short window per row, so it
-/// needs one byte per cell. Beyond the mask's edge counts as outside.
-inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mask, int W, int H, double distance) {
-  const std::size_t N = static_cast<std::size_t>(W) * H;
-  std::vector<std::uint8_t> core(N, 0);
-  if (N == 0) return core;
+/// Rows of vertical distances the erosion computes at once (`erode_rows`): a band and its margins
+/// instead of a full-size buffer.
+inline constexpr int erosion_band_rows = 256;
+
+/// The erosion of `mask` (`W` x `H`, one byte per cell) by a disc of `distance` cells (centre to
+/// centre; beyond the mask's edge counts as outside), row by row: calls `on_row(r, core)` for
+/// r = 0, 1, ..., H − 1, where `core` points to that row's W bytes (1: no cell outside the mask
+/// closer than `distance`), valid during the call. Works on byte column distances capped at the
+/// disc's reach, so a row's depends only on the rows within reach: they are found a band of rows
+/// at a time, and the working memory is a band, not the mask's size.
+template <class OnRow>
+void erode_rows(const std::uint8_t* mask, int W, int H, double distance, OnRow&& on_row) {
+  if (W <= 0 || H <= 0) return;
   const double threshold = distance * distance;
   const int reach = static_cast<int>(std::ceil(distance));
   if (reach >= 250) throw parameter_error("erosion radius too large for the grid's resolution");
   const auto cap = static_cast<std::uint8_t>(reach + 1);  // cap² ≥ threshold: "far enough"
+  const auto w = static_cast<std::size_t>(W);
   // Each row's mask cells lie in [first[r], last[r]); outside it the column distances and the
   // core stay 0, so every pass skips it — on a rotated or L-shaped building, most of the box.
   std::vector<int> first(static_cast<std::size_t>(H)), last(static_cast<std::size_t>(H));
   for (int r = 0; r < H; ++r) {
-    const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * W];
+    const std::uint8_t* row = mask + static_cast<std::size_t>(r) * w;
     first[r] = find_byte_not_equal(row, 0, W, 0);
     last[r] = find_last_byte_not_equal(row, first[r], W, 0);
   }
-  // Vertical distance to the nearest non-free cell in the same column, capped.
-  std::vector<std::uint8_t> vertical(N, 0);
-  for (int c = first[0]; c < last[0]; ++c) vertical[c] = mask[c] ? 1 : 0;
-  for (int r = 1; r < H; ++r) {
-    const std::uint8_t* above = &vertical[static_cast<std::size_t>(r - 1) * W];
-    const std::uint8_t* free = &mask[static_cast<std::size_t>(r) * W];
-    std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    in_blocks(first[r], last[r], [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
-  }
-  // Beyond the last row is outside too (as beyond the first, above).
-  std::uint8_t* bottom = &vertical[static_cast<std::size_t>(H - 1) * W];
-  for (int c = first[H - 1]; c < last[H - 1]; ++c) bottom[c] = std::min<std::uint8_t>(bottom[c], 1);
-  for (int r = H - 2; r >= 0; --r) {
-    const std::uint8_t* below = &vertical[static_cast<std::size_t>(r + 1) * W];
-    std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    in_blocks(first[r], last[r], [&](int c, int count) { grow_from_below(row + c, below + c, count, cap); });
-  }
   // Core iff for every column offset dx within reach: vertical(c + dx) ≥ need[|dx|], the
-  // smallest vertical distance that keeps that column's nearest obstacle far enough. One pass
-  // of byte comparisons per offset, which the compiler vectorises. need[0] ≥ 1 keeps the core
-  // inside the mask (cells outside have vertical distance 0).
+  // smallest vertical distance that keeps that column's nearest obstacle far enough. need[0] ≥ 1
+  // keeps the core inside the mask (cells outside have vertical distance 0).
   std::vector<std::uint8_t> need(static_cast<std::size_t>(reach) + 1);
   for (int dx = 0; dx <= reach; ++dx) {
     const double rest = threshold - static_cast<double>(dx) * dx;
     need[dx] = static_cast<std::uint8_t>(rest <= 0.0 ? 0 : std::min<int>(cap, static_cast<int>(std::ceil(std::sqrt(rest) - 1e-9))));
   }
   need[0] = std::max<std::uint8_t>(need[0], 1);
-  for (int r = 0; r < H; ++r) {
-    const int lo = first[r], hi = last[r];
-    if (lo >= hi) continue;
-    const std::uint8_t* row = &vertical[static_cast<std::size_t>(r) * W];
-    std::uint8_t* out = &core[static_cast<std::size_t>(r) * W];
-    in_blocks(lo, hi, [&](int c, int count) { at_least(out + c, row + c, count, need[0]); });
-    for (int dx = 1; dx <= reach; ++dx) {
-      const std::uint8_t n = need[dx];
-      if (n > 0) {  // beyond the mask counts as obstacle: cells that close to its edge fail
-        for (int c = lo; c < std::min(dx, hi); ++c) out[c] = 0;
-        for (int c = std::max(W - dx, lo); c < hi; ++c) out[c] = 0;
+  // Vertical distance to the nearest non-free cell in the same column (beyond the first and last
+  // rows counts as outside), capped, for the band's rows and `cap` rows either side. A pass
+  // started inside the mask assumes "far" above (or below) its first row: wrong only by how far
+  // the true obstacle lies beyond it, which the cap hides from every row `cap` rows in.
+  const int margin = cap;
+  std::vector<std::uint8_t> vertical(static_cast<std::size_t>(erosion_band_rows + 2 * margin) * w, 0);
+  std::vector<std::uint8_t> out(w, 0);
+  for (int band = 0; band < H; band += erosion_band_rows) {
+    const int band_end = std::min(H, band + erosion_band_rows);
+    const int top = std::max(0, band - margin), bottom = std::min(H, band_end + margin);
+    auto vrow = [&](int r) { return vertical.data() + static_cast<std::size_t>(r - top) * w; };
+    {
+      std::uint8_t* row = vrow(top);
+      const std::uint8_t* free = mask + static_cast<std::size_t>(top) * w;
+      std::fill(row, row + w, std::uint8_t{0});
+      const std::uint8_t start = top == 0 ? 1 : cap;
+      for (int c = first[top]; c < last[top]; ++c) row[c] = free[c] ? start : 0;
+    }
+    for (int r = top + 1; r < bottom; ++r) {
+      const std::uint8_t* above = vrow(r - 1);
+      const std::uint8_t* free = mask + static_cast<std::size_t>(r) * w;
+      std::uint8_t* row = vrow(r);
+      std::fill(row, row + w, std::uint8_t{0});
+      in_blocks(first[r], last[r], [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
+    }
+    if (bottom == H) {
+      std::uint8_t* last_row = vrow(H - 1);
+      for (int c = first[H - 1]; c < last[H - 1]; ++c) last_row[c] = std::min<std::uint8_t>(last_row[c], 1);
+    }
+    for (int r = bottom - 2; r >= top; --r) {
+      const std::uint8_t* below = vrow(r + 1);
+      std::uint8_t* row = vrow(r);
+      in_blocks(first[r], last[r], [&](int c, int count) { grow_from_below(row + c, below + c, count, cap); });
+    }
+    for (int r = band; r < band_end; ++r) {
+      const int lo = first[r], hi = last[r];
+      std::fill(out.begin(), out.end(), std::uint8_t{0});
+      if (lo < hi) {
+        const std::uint8_t* row = vrow(r);
+        std::uint8_t* o = out.data();
+        in_blocks(lo, hi, [&](int c, int count) { at_least(o + c, row + c, count, need[0]); });
+        for (int dx = 1; dx <= reach; ++dx) {
+          const std::uint8_t n = need[dx];
+          if (n > 0) {  // beyond the mask counts as obstacle: cells that close to its edge fail
+            for (int c = lo; c < std::min(dx, hi); ++c) o[c] = 0;
+            for (int c = std::max(W - dx, lo); c < hi; ++c) o[c] = 0;
+          }
+          in_blocks(std::max(dx, lo), std::min(W - dx, hi),
+                    [&](int c, int count) { and_both_at_least(o + c, row + c - dx, row + c + dx, count, n); });
+        }
       }
-      in_blocks(std::max(dx, lo), std::min(W - dx, hi), [&](int c, int count) { and_both_at_least(out + c, row + c - dx, row + c + dx, count, n); });
+      on_row(r, static_cast<const std::uint8_t*>(out.data()));
     }
   }
+}
+
+/// `erode_rows` into a full mask.
+inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mask, int W, int H, double distance) {
+  const std::size_t N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
+  std::vector<std::uint8_t> core(N, 0);
+  erode_rows(mask.data(), W, H, distance, [&](int r, const std::uint8_t* row) {
+    std::copy(row, row + W, core.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r) * static_cast<std::size_t>(W)));
+  });
   return core;
 }
 

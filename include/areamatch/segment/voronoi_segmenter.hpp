@@ -25,7 +25,9 @@
 #include "rooms.hpp"
 #include "skeleton.hpp"
 
+#include <algorithm>
 #include <chrono>
+#include <cstdint>
 #include <string>
 
 namespace areamatch {
@@ -115,14 +117,15 @@ struct VoronoiSegmenter {
     SegmentationDetails out;
     const double res = grid.resolution();
     const auto t0 = clock::now();
-    const FreeSpace space = binarize(grid, params.binarize);
+    FreeSpace space = binarize(grid, params.binarize);
+    const bool space_empty = std::none_of(space.free.begin(), space.free.end(), [](std::uint8_t f) { return f != 0; });
     // Free space too thin to matter is not traced (BoundaryParams::min_traced_width_m); the
     // areas still cover the whole free space. Without the option no copy of the mask is made.
     const bool open_traced = params.boundary.min_traced_width_m > 0.0;
-    const FreeSpace opened = open_traced ? open_free_space(space, 0.5 * params.boundary.min_traced_width_m / res) : FreeSpace{};
+    FreeSpace opened = open_traced ? open_free_space(space, 0.5 * params.boundary.min_traced_width_m / res) : FreeSpace{};
     const FreeSpace& passable = open_traced ? opened : space;
     const auto t1 = clock::now();
-    const BoundarySegments boundary = trace_boundary(passable, res, params.boundary);
+    BoundarySegments boundary = trace_boundary(passable, res, params.boundary);
     out.boundary_segments = boundary.segments.size();
     if (boundary.segments.size() > params.boundary.max_segments) {
       throw limit_error("the map's obstacle boundary has " + std::to_string(boundary.segments.size()) +
@@ -134,18 +137,21 @@ struct VoronoiSegmenter {
     out.refined_rings = boundary.refined_rings;
     const auto t2 = clock::now();
     out.skeleton = build_skeleton(passable, boundary, res, skeleton_params);
+    opened = FreeSpace{};  // traced: neither is read again
+    boundary = BoundarySegments{};
     const auto t3 = clock::now();
     out.rooms = detect_rooms(out.skeleton, res, params.rooms);
     if (!keep_skeleton) out.skeleton = Skeleton{};
     const auto t4 = clock::now();
     const bool no_samples = out.rooms.graph.samples.empty();
-    // Without details, the rooms' sample graph is let go before the labels are made.
+    // Without details, the rooms' sample graph is let go before the labels are made, and the
+    // free-space mask once they hold it.
     out.graph = keep_skeleton ? build_areas(grid, space, out.rooms, area_params)
                               : detail::build_areas_releasing(grid, space, out.rooms, area_params);
     if (out.graph.areas.empty()) {
       if (grid.count().free == 0 && !params.binarize.unknown_is_free) {
         out.graph.reason = "the map has no free cells";
-      } else if (space.count() == 0) {
+      } else if (space_empty) {
         out.graph.reason = "its free cells form only specks smaller than " +
                            std::to_string(params.binarize.min_free_area_m2) + " m^2";
       } else if (no_samples) {
