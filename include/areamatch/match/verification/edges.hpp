@@ -25,8 +25,9 @@ namespace detail {
 /// or off the grid), as row-major indices in scan order. `fill_row(first, last, out)` writes 1
 /// for the cells [first, last) (row-major indices, within one row) that are in the region and 0
 /// for the others; it is asked for each row of `bounds` and the ring around it (the neighbours
-/// of border cells count whether or not they lie in `bounds`), then the edge test reads a mask
-/// with a false border instead of checking the grid's bounds four times a cell.
+/// of border cells count whether or not they lie in `bounds`), once each and in order. The edge
+/// test reads three rows of a mask with a false border instead of checking the grid's bounds
+/// four times a cell; only those three rows are held.
 template <class FillRow>
 std::vector<std::size_t> edge_cells_by_rows(const GridInfo& g, const PixelBounds& bounds, FillRow fill_row) {
   std::vector<std::size_t> out;
@@ -34,21 +35,27 @@ std::vector<std::size_t> edge_cells_by_rows(const GridInfo& g, const PixelBounds
   const int x0 = bounds.col0 - 1, y0 = bounds.row0 - 1;
   const int mask_w = bounds.col1 - bounds.col0 + 2, mask_h = bounds.row1 - bounds.row0 + 2;
   const auto width = static_cast<std::size_t>(g.width);
-  std::vector<std::uint8_t> mask(static_cast<std::size_t>(mask_w) * static_cast<std::size_t>(mask_h), 0);
-  for (int my = 0; my < mask_h; ++my) {
+  const auto row_bytes = static_cast<std::size_t>(mask_w);
+  std::vector<std::uint8_t> rows(3 * row_bytes, 0);
+  auto mask_row = [&](int my) { return rows.data() + static_cast<std::size_t>(my % 3) * row_bytes; };
+  auto fill = [&](int my) {
+    std::uint8_t* row = mask_row(my);
+    std::fill(row, row + row_bytes, std::uint8_t{0});
     const int y = y0 + my;
-    if (y < 0 || y >= g.height) continue;
-    std::uint8_t* row = mask.data() + static_cast<std::size_t>(my) * static_cast<std::size_t>(mask_w);
+    if (y < 0 || y >= g.height) return;
     const std::size_t grid_row = static_cast<std::size_t>(y) * width;
     const int mx_begin = std::max(0, -x0), mx_end = std::min(mask_w, g.width - x0);
     if (mx_begin < mx_end) {
       fill_row(grid_row + static_cast<std::size_t>(x0 + mx_begin), grid_row + static_cast<std::size_t>(x0 + mx_end), row + mx_begin);
     }
-  }
+  };
+  fill(0);
+  if (mask_h > 1) fill(1);
   for (int my = 1; my + 1 < mask_h; ++my) {
-    const std::uint8_t* row = mask.data() + static_cast<std::size_t>(my) * static_cast<std::size_t>(mask_w);
-    const std::uint8_t* above = row - mask_w;
-    const std::uint8_t* below = row + mask_w;
+    fill(my + 1);
+    const std::uint8_t* row = mask_row(my);
+    const std::uint8_t* above = mask_row(my - 1);
+    const std::uint8_t* below = mask_row(my + 1);
     const std::size_t grid_row = static_cast<std::size_t>(y0 + my) * width;
     for (int mx = 1; mx + 1 < mask_w; ++mx) {
       if (mx + 8 < mask_w) {  // most cells are outside the region: skip eight at a time
