@@ -113,7 +113,15 @@ void for_each_edge_cell(const GridInfo& g, const std::vector<std::size_t>& cells
 /// thinned evenly to at most `max_points`.
 inline std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const std::vector<std::size_t>& cells, double spacing_m,
                                                     std::size_t max_points = std::numeric_limits<std::size_t>::max()) {
+  // Counted first, so the points are held once at their exact size: on a large floor, growing
+  // them by doubling allocated (and the system zeroed) twice their size again.
+  std::size_t count = 0;
+  for_each_edge_cell(g, cells, spacing_m, [&](std::size_t, const Eigen::Vector2d&) {
+    ++count;
+    return true;
+  });
   std::vector<Eigen::Vector2d> points;
+  points.reserve(count);
   for_each_edge_cell(g, cells, spacing_m, [&](std::size_t, const Eigen::Vector2d& p) {
     points.push_back(p);
     return true;
@@ -124,7 +132,6 @@ inline std::vector<Eigen::Vector2d> boundary_points(const GridInfo& g, const std
     for (std::size_t i = 0; i < max_points; ++i) thinned.push_back(points[i * points.size() / max_points]);
     points.swap(thinned);
   }
-  points.shrink_to_fit();  // kept with the match data: without the growth's slack (up to half)
   return points;
 }
 
