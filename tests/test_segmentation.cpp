@@ -508,6 +508,31 @@ TEST_CASE("byte scans find and count the same bytes as a plain loop") {
   }
 }
 
+TEST_CASE("label scans find the same cells as a plain loop, for 16- and 32-bit labels") {
+  // Values near the working labels' states (negative) and region ids, including 0x7FFF and
+  // values whose halves look alike, so that a lane test that leaked across lanes would show.
+  detail::Random random(18);
+  const std::int16_t values16[] = {-4, -3, -2, -1, 0, 1, 255, 256, 0x7FFF, -0x8000};
+  auto check = [&](auto sample) {
+    using T = decltype(sample);
+    for (int trial = 0; trial < 2000; ++trial) {
+      const int n = random.integer(0, 70);
+      std::vector<T> row(static_cast<std::size_t>(n) + 1);
+      const bool long_runs = trial % 2 == 0;
+      for (auto& v : row) v = static_cast<T>(values16[long_runs ? (random.chance(0.05) ? 4 : 0) : random.integer(0, 9)]);
+      const int from = random.integer(0, n), to = random.integer(from, n);
+      const auto value = static_cast<T>(values16[random.integer(0, 9)]);
+      int equal = from, not_equal = from;
+      while (equal < to && row[equal] != value) ++equal;
+      while (not_equal < to && row[not_equal] == value) ++not_equal;
+      CHECK(detail::find_value(row.data(), from, to, value, true) == equal);
+      CHECK(detail::find_value(row.data(), from, to, value, false) == not_equal);
+    }
+  };
+  check(std::int16_t{});
+  check(std::int32_t{});
+}
+
 TEST_CASE("speckles: small blobs go by area, and by size with max_speckle_size_m") {
   // 0.1 m cells. A 4x4 blob (0.16 m^2, 0.4 m across), a 1x3 dot (0.03 m^2) and a free-standing
   // wall 20 cells long (0.2 m^2, 2 m across) in a room.

@@ -102,4 +102,31 @@ inline std::size_t count_byte_equal(const std::uint8_t* bytes, std::size_t count
   return n;
 }
 
+/// The zero 16-bit lanes of `x` with their high bit set, and nothing else.
+inline std::uint64_t zero_lane16_marks(std::uint64_t x) {
+  constexpr std::uint64_t low15 = 0x7FFF7FFF7FFF7FFFULL;
+  return ~(((x & low15) + low15) | x | low15);
+}
+
+/// The first index in [from, to) of a row of values (the area stage's working labels) that equals
+/// `value` (`equal`) or differs from it, or `to`. 16-bit values four per step, as the byte scans.
+template <class T>
+int find_value(const T* row, int from, int to, T value, bool equal) {
+  int c = from;
+#ifdef AREAMATCH_WORD_SCAN
+  if constexpr (sizeof(T) == 2) {
+    const std::uint64_t pattern = 0x0001000100010001ULL * static_cast<std::uint16_t>(value);
+    for (; c + 4 <= to; c += 4) {
+      std::uint64_t word;
+      std::memcpy(&word, row + c, 8);
+      const std::uint64_t differ = word ^ pattern;
+      const std::uint64_t marked = equal ? zero_lane16_marks(differ) : differ;
+      if (marked != 0) return c + __builtin_ctzll(marked) / 16;
+    }
+  }
+#endif
+  while (c < to && (row[c] == value) != equal) ++c;
+  return c;
+}
+
 }  // namespace areamatch::detail

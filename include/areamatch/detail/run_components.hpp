@@ -90,13 +90,9 @@ RunComponents run_components_of(const std::vector<T>& values, int width, int hei
   for (int r = 0; r < height; ++r) {
     out.row_start[r] = runs.size();
     const T* row = &values[static_cast<std::size_t>(r) * static_cast<std::size_t>(width)];
-    for (int c = 0; c < width;) {
-      if (row[c] != value) {
-        ++c;
-        continue;
-      }
+    for (int c = find_value(row, 0, width, value, true); c < width; c = find_value(row, c, width, value, true)) {
       const int begin = c;
-      while (c < width && row[c] == value) ++c;
+      c = find_value(row, c, width, value, false);
       runs.push_back({r, begin, c});
     }
   }

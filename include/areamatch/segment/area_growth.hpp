@@ -189,14 +189,23 @@ void grow_regions(int W, int H, const std::vector<Seed>& seeds, int fringe_steps
   };
   fill_uncontested_core(core_pieces, label, frontier, W);
   while (!frontier.empty()) grow_ring(false);
-  // The fringe starts from labelled cells next to free space not reached yet.
-  for (std::size_t i = 0, N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H); i < N; ++i) {
-    if (label[i] < 0) continue;
-    for (std::ptrdiff_t d : neighbour_offset) {
-      if (unreached(label[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d)])) {
-        frontier.push_back(static_cast<std::uint32_t>(i));
-        break;
+  // The fringe starts from labelled cells next to free space not reached yet (stretches of one
+  // unlabelled state, most of all outside the free space, skipped a word at a time).
+  for (int r = 0; r < H; ++r) {
+    const Label* row = &label[static_cast<std::size_t>(r) * static_cast<std::size_t>(W)];
+    for (int c = 0; c < W;) {
+      if (row[c] < 0) {
+        c = find_value(row, c + 1, W, row[c], false);
+        continue;
       }
+      const std::size_t i = static_cast<std::size_t>(r) * static_cast<std::size_t>(W) + static_cast<std::size_t>(c);
+      for (std::ptrdiff_t d : neighbour_offset) {
+        if (unreached(label[static_cast<std::size_t>(static_cast<std::ptrdiff_t>(i) + d)])) {
+          frontier.push_back(static_cast<std::uint32_t>(i));
+          break;
+        }
+      }
+      ++c;
     }
   }
   for (int ring = 0; ring < fringe_steps && !frontier.empty(); ++ring) grow_ring(true);

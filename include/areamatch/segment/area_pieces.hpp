@@ -3,6 +3,7 @@
 /// Steps 4–7 of `build_areas`: the labelling as runs, its 4-connected pieces, small pieces merged
 /// into the neighbour they share the longest border with, and which skeleton region became which area.
 
+#include "../detail/blocks.hpp"
 #include "../detail/disjoint_sets.hpp"
 #include "binarize.hpp"
 
@@ -36,12 +37,10 @@ LabelRuns label_runs(const std::vector<Label>& label, int W, int H) {
   for (int r = 0; r < H; ++r) {
     out.row_start[r] = out.runs.size();
     const Label* row = &label[static_cast<std::size_t>(r) * static_cast<std::size_t>(W)];
-    int c = 0;
-    while (c < W) {
-      const int l = row[c];
-      int end = c + 1;
-      while (end < W && row[end] == l) ++end;
-      if (l >= 0) out.runs.push_back({r, c, end, l, -1});
+    for (int c = 0; c < W;) {
+      const Label l = row[c];
+      const int end = find_value(row, c + 1, W, l, false);
+      if (l >= 0) out.runs.push_back({r, c, end, static_cast<int>(l), -1});
       c = end;
     }
   }
