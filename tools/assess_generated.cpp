@@ -70,7 +70,7 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
   const auto& grid = robot.grid;
   std::map<int, double> piece_m2;
   std::vector<std::map<int, double>> votes(map_graph.areas.size());
-  std::vector<char> seen(reference_raster.centres.size(), 0);
+  std::vector<char> seen(reference_raster.labelled_count(), 0);
   const double cell_m2 = grid.resolution() * grid.resolution();
   t.piece_of_cell.assign(grid.cells().size(), -1);
   for (int row = 0; row < grid.height(); ++row) {
@@ -90,8 +90,8 @@ PairTruth truth_of(const areamatch::RobotMap& robot, const areamatch::AreaGraph&
   // Coverage: the robot cell that truly shows each raster centre, found by inverting the truth
   // (each piece's motion, then the bend and drift by fixed point, then the rigid transform).
   const areamatch::Similarity2 back = robot.T_dest_source.inverse();
-  for (std::size_t k = 0; k < reference_raster.centres.size(); ++k) {
-    const Eigen::Vector2d& c = reference_raster.centres[k];
+  for (std::size_t k = 0; k < reference_raster.labelled_count(); ++k) {
+    const Eigen::Vector2d c = reference_raster.centre(k);
     for (int piece = 0; piece <= static_cast<int>(robot.breaks.size()); ++piece) {
       const Eigen::Vector2d bent = robot.piece_motion(piece).inverse() * c;
       if (robot.piece_at(bent) != piece) continue;

@@ -82,8 +82,8 @@ inline Coverage map_coverage(const OccupancyGrid& map, const AreaGraph& map_grap
   Coverage out;
   const std::size_t n = reference_graph.areas.size();
   std::vector<std::size_t> seen(n, 0);
-  for (std::size_t k = 0; k < reference_raster.centres.size(); ++k) {
-    const Eigen::Vector2i cell = map.world_to_cell(warp.inverse(reference_raster.centres[k], 1e-4));
+  for (std::size_t k = 0; k < reference_raster.labelled_count(); ++k) {
+    const Eigen::Vector2i cell = map.world_to_cell(warp.inverse(reference_raster.centre(k), 1e-4));
     if (map.contains(cell.x(), cell.y()) && map.at(cell.x(), cell.y()) == CellState::free) {
       ++seen[static_cast<std::size_t>(reference_raster.centre_labels[k])];
     }
@@ -115,7 +115,7 @@ inline Coverage map_coverage(const OccupancyGrid& map, const AreaGraph& map_grap
     if (cells.empty()) continue;
     std::size_t on = 0;
     for (const int k : cells) {
-      const Eigen::Vector2i cell = reference.world_to_cell(warp.apply(map_raster.centres[static_cast<std::size_t>(k)]));
+      const Eigen::Vector2i cell = reference.world_to_cell(warp.apply(map_raster.centre(static_cast<std::size_t>(k))));
       on += reference.contains(cell.x(), cell.y()) && reference.at(cell.x(), cell.y()) == CellState::free;
     }
     if (static_cast<double>(on) < params.extra_area_share * static_cast<double>(cells.size())) {

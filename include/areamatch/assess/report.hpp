@@ -68,7 +68,7 @@ inline std::vector<AreaDisplacement> area_displacements(const AreaRaster& raster
   std::vector<double> moved;
   for (std::size_t a = 0; a < raster.area_cells.size(); ++a) {
     moved.clear();
-    for (const int k : raster.area_cells[a]) moved.push_back(warp.displacement(raster.centres[static_cast<std::size_t>(k)]).norm());
+    for (const int k : raster.area_cells[a]) moved.push_back(warp.displacement(raster.centre(static_cast<std::size_t>(k))).norm());
     AreaDisplacement d;
     d.area = static_cast<int>(a);
     if (!moved.empty()) {

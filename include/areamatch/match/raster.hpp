@@ -89,12 +89,19 @@ struct AreaRaster {
   int height = 0;
   /// World metres → continuous raster coordinates; cell (c, r) covers [c, c+1) × [r, r+1).
   Eigen::Affine2d cell_from_world = Eigen::Affine2d::Identity();
-  std::vector<int> labels;                ///< per cell (row-major): area id or −1
-  std::vector<Eigen::Vector2d> centres;   ///< world centres of the labelled cells, row-major order
-  std::vector<int> centre_labels;         ///< their area ids
-  std::vector<std::vector<int>> area_cells;  ///< per area: indices into `centres`
+  Eigen::Affine2d world_from_cell = Eigen::Affine2d::Identity();  ///< its inverse
+  std::vector<int> labels;                   ///< per cell (row-major): area id or −1
+  std::vector<Eigen::Vector2i> centre_cells;  ///< the labelled cells (col, row), in row-major order
+  std::vector<int> centre_labels;            ///< their area ids
+  std::vector<std::vector<int>> area_cells;  ///< per area: indices into `centre_cells`
 
-  std::size_t labelled_count() const { return centres.size(); }
+  std::size_t labelled_count() const { return centre_cells.size(); }
+  /// World centre of labelled cell k (of `centre_cells`): computed, not stored — on a large floor
+  /// stored centres were 16 bytes a labelled cell in both maps' match data, the cells are 8.
+  Eigen::Vector2d centre(std::size_t k) const {
+    const Eigen::Vector2i& cell = centre_cells[k];
+    return world_from_cell * Eigen::Vector2d(cell.x() + 0.5, cell.y() + 0.5);
+  }
   double cell_area() const { return cell_m * cell_m; }
 
   /// The area id at a world point, −1 outside every area or outside the raster.
@@ -126,7 +133,7 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
   cell_from_pixel.linear() = Eigen::Matrix2d::Identity() / factor;
   cell_from_pixel.translation() = Eigen::Vector2d(0.5 - bounds.col0, 0.5 - bounds.row0) / factor;
   r.cell_from_world = cell_from_pixel * g.world_from_pixel().inverse();
-  const Eigen::Affine2d world_from_cell = r.cell_from_world.inverse();
+  r.world_from_cell = r.cell_from_world.inverse();
 
   r.labels.assign(static_cast<std::size_t>(r.width) * static_cast<std::size_t>(r.height), -1);
   r.area_cells.resize(graph.areas.size());
@@ -188,13 +195,13 @@ inline AreaRaster make_area_raster(const AreaGraph& graph, double cell_m) {
       });
       const int label = best->first;
       r.labels[static_cast<std::size_t>(row) * static_cast<std::size_t>(r.width) + static_cast<std::size_t>(col)] = label;
-      r.area_cells[static_cast<std::size_t>(label)].push_back(static_cast<int>(r.centres.size()));
-      r.centres.push_back(world_from_cell * Eigen::Vector2d(col + 0.5, row + 0.5));
+      r.area_cells[static_cast<std::size_t>(label)].push_back(static_cast<int>(r.centre_cells.size()));
+      r.centre_cells.emplace_back(col, row);
       r.centre_labels.push_back(label);
     }
   }
   // Kept with the match data: without the growth's slack (up to half).
-  r.centres.shrink_to_fit();
+  r.centre_cells.shrink_to_fit();
   r.centre_labels.shrink_to_fit();
   for (auto& cells : r.area_cells) cells.shrink_to_fit();
   return r;
@@ -209,8 +216,8 @@ inline std::size_t count_overlap(const AreaRaster& source, const AreaRaster& des
   const Eigen::Matrix2d m = to_cell.linear();
   const Eigen::Vector2d t = to_cell.translation();
   std::size_t hits = 0;
-  for (std::size_t i = 0; i < source.centres.size(); i += stride) {
-    if (dest.label_at_cell(m * source.centres[i] + t) >= 0) ++hits;
+  for (std::size_t i = 0; i < source.labelled_count(); i += stride) {
+    if (dest.label_at_cell(m * source.centre(i) + t) >= 0) ++hits;
   }
   return hits;
 }
@@ -220,14 +227,14 @@ inline std::size_t count_overlap(const AreaRaster& source, const AreaRaster& des
 /// keeps areas, so source cells and destination cells count alike).
 inline double free_space_iou(const AreaRaster& source, const AreaRaster& dest, const Similarity2& T_dest_source,
                              std::size_t stride = 1) {
-  if (source.centres.empty() || dest.centres.empty()) return 0.0;
+  if (source.centre_cells.empty() || dest.centre_cells.empty()) return 0.0;
   stride = std::max<std::size_t>(1, stride);
-  const std::size_t samples = (source.centres.size() + stride - 1) / stride;
+  const std::size_t samples = (source.labelled_count() + stride - 1) / stride;
   const double hits = static_cast<double>(count_overlap(source, dest, T_dest_source, stride)) *
-                      static_cast<double>(source.centres.size()) / static_cast<double>(samples);
+                      static_cast<double>(source.labelled_count()) / static_cast<double>(samples);
   const double scale2 = T_dest_source.scale * T_dest_source.scale;
-  const double union_cells = static_cast<double>(source.centres.size()) * scale2 +
-                             static_cast<double>(dest.centres.size()) - hits * scale2;
+  const double union_cells = static_cast<double>(source.labelled_count()) * scale2 +
+                             static_cast<double>(dest.labelled_count()) - hits * scale2;
   return union_cells > 0.0 ? std::clamp(hits * scale2 / union_cells, 0.0, 1.0) : 0.0;
 }
 
@@ -244,7 +251,7 @@ inline double raster_area_overlap(const AreaRaster& source, const AreaRaster& de
   const std::size_t stride = std::max<std::size_t>(1, (cells.size() + max_samples - 1) / std::max<std::size_t>(1, max_samples));
   std::size_t hits = 0, samples = 0;
   for (std::size_t k = 0; k < cells.size(); k += stride, ++samples) {
-    if (dest.label_at_cell(to_cell * source.centres[static_cast<std::size_t>(cells[k])]) == dest_area) ++hits;
+    if (dest.label_at_cell(to_cell * source.centre(static_cast<std::size_t>(cells[k]))) == dest_area) ++hits;
   }
   if (samples == 0) return 0.0;
   const double overlap_m2 = static_cast<double>(hits) * static_cast<double>(cells.size()) / static_cast<double>(samples) *

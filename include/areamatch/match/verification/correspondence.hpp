@@ -115,7 +115,7 @@ inline std::vector<MatchedAreaPair> area_correspondences(const std::vector<std::
     std::vector<int> landed;  // the destination areas of its cells (a few, not all of them)
     const Eigen::Affine2d to_cell = dest_raster.cell_from_world * T.affine();
     for (int index : source_raster.area_cells[i]) {
-      const int label = dest_raster.label_at_cell(to_cell * source_raster.centres[static_cast<std::size_t>(index)]);
+      const int label = dest_raster.label_at_cell(to_cell * source_raster.centre(static_cast<std::size_t>(index)));
       if (label >= 0) landed.push_back(label);
     }
     const auto counts = counted(landed);

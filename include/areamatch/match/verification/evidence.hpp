@@ -120,15 +120,15 @@ inline MatchEvidence measure_evidence(const AreaGraph& source, const AreaGraph& 
   for (std::size_t i = 0; i < ns; ++i) {
     landed.clear();
     for (int k : source_raster.area_cells[i]) {
-      const int j = dest_raster.label_at_cell(to_cell * source_raster.centres[static_cast<std::size_t>(k)]);
+      const int j = dest_raster.label_at_cell(to_cell * source_raster.centre(static_cast<std::size_t>(k)));
       if (j >= 0) landed.push_back(j);
     }
     hits += landed.size();
     overlap[i] = detail::counted(landed);
   }
   const double scale2 = T_dest_source.scale * T_dest_source.scale;  // source cells → destination cells
-  const double source_cells = static_cast<double>(source_raster.centres.size()) * scale2;
-  const double dest_cells = static_cast<double>(dest_raster.centres.size());
+  const double source_cells = static_cast<double>(source_raster.labelled_count()) * scale2;
+  const double dest_cells = static_cast<double>(dest_raster.labelled_count());
   const double common = static_cast<double>(hits) * scale2;
   e.overlap_m2 = common * dest_raster.cell_area();
   e.free_iou = source_cells + dest_cells - common > 0.0 ? common / (source_cells + dest_cells - common) : 0.0;

@@ -60,7 +60,8 @@ inline void measure_turn_margin(const AreaRaster& source_fine, const AreaRaster&
   Eigen::Vector2d centre = Eigen::Vector2d::Zero();
   std::size_t common = 0;
   const Eigen::Affine2d to_cell = dest_fine.cell_from_world * T.affine();
-  for (const auto& c : source_fine.centres) {
+  for (std::size_t k = 0; k < source_fine.labelled_count(); ++k) {
+    const Eigen::Vector2d c = source_fine.centre(k);
     if (dest_fine.label_at_cell(to_cell * c) < 0) continue;
     centre += T * c;
     ++common;

@@ -101,8 +101,8 @@ struct is_selection<S, std::void_t<decltype(std::declval<const S&>().select(std:
 /// The mean of a raster's labelled cell centres (the origin when it has none).
 inline Eigen::Vector2d centroid_of(const AreaRaster& raster) {
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();
-  for (const auto& c : raster.centres) centroid += c;
-  return raster.centres.empty() ? centroid : Eigen::Vector2d(centroid / static_cast<double>(raster.centres.size()));
+  for (std::size_t k = 0; k < raster.labelled_count(); ++k) centroid += raster.centre(k);
+  return raster.labelled_count() == 0 ? centroid : Eigen::Vector2d(centroid / static_cast<double>(raster.labelled_count()));
 }
 
 /// Whether two transforms are clearly different answers: another side of the mirror, a
