@@ -508,7 +508,7 @@ TEST_CASE("byte scans find and count the same bytes as a plain loop") {
   }
 }
 
-TEST_CASE("label scans find the same cells as a plain loop, for 16- and 32-bit labels") {
+TEST_CASE("value scans find the same cells as a plain loop, for bytes and 16- and 32-bit labels") {
   // Values near the working labels' states (negative) and region ids, including 0x7FFF and
   // values whose halves look alike, so that a lane test that leaked across lanes would show.
   detail::Random random(18);
@@ -529,6 +529,7 @@ TEST_CASE("label scans find the same cells as a plain loop, for 16- and 32-bit l
       CHECK(detail::find_value(row.data(), from, to, value, false) == not_equal);
     }
   };
+  check(std::uint8_t{});
   check(std::int16_t{});
   check(std::int32_t{});
 }

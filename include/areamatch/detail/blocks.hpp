@@ -8,6 +8,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 namespace areamatch::detail {
 
@@ -108,10 +109,14 @@ inline std::uint64_t zero_lane16_marks(std::uint64_t x) {
   return ~(((x & low15) + low15) | x | low15);
 }
 
-/// The first index in [from, to) of a row of values (the area stage's working labels) that equals
-/// `value` (`equal`) or differs from it, or `to`. 16-bit values four per step, as the byte scans.
+/// The first index in [from, to) of a row of values (a mask's bytes, the area stage's working
+/// labels) that equals `value` (`equal`) or differs from it, or `to`. Bytes by the byte scans,
+/// 16-bit values four per step in the same way.
 template <class T>
 int find_value(const T* row, int from, int to, T value, bool equal) {
+  if constexpr (std::is_same_v<T, std::uint8_t>) {
+    return equal ? find_byte_equal(row, from, to, value) : find_byte_not_equal(row, from, to, value);
+  }
   int c = from;
 #ifdef AREAMATCH_WORD_SCAN
   if constexpr (sizeof(T) == 2) {

@@ -50,38 +50,8 @@ void for_each_vertical_contact(const std::vector<Run>& runs, const std::vector<s
   }
 }
 
-/// Joins `out.runs` (found, in raster order, with `out.row_start`) into components, 4-connected
-/// or with `eight` 8-connected.
-inline void join_run_components(RunComponents& out, bool eight) {
-  DisjointSets joined(out.runs.size());
-  // 8-connectivity also joins runs touching at a corner.
-  for_each_vertical_contact(out.runs, out.row_start, eight ? 1 : 0,
-                            [&](std::size_t upper, std::size_t lower) { joined.join(lower, upper); });
-  out.component.resize(out.runs.size());
-  for (std::size_t i = 0; i < out.runs.size(); ++i) out.component[i] = joined.find(i);
-}
-
-/// `RunComponents` of the cells with `mask == value`, 4-connected or with `eight` 8-connected.
-inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value,
-                                    bool eight) {
-  RunComponents out;
-  auto& runs = out.runs;
-  out.row_start.assign(static_cast<std::size_t>(height) + 1, 0);
-  for (int r = 0; r < height; ++r) {
-    out.row_start[r] = runs.size();
-    const std::uint8_t* row = &mask[static_cast<std::size_t>(r) * width];
-    for (int c = find_byte_equal(row, 0, width, value); c < width; c = find_byte_equal(row, c, width, value)) {
-      const int begin = c;
-      c = find_byte_not_equal(row, c, width, value);
-      runs.push_back({r, begin, c});
-    }
-  }
-  out.row_start[height] = runs.size();
-  join_run_components(out, eight);
-  return out;
-}
-
-/// `RunComponents` of the cells with `values == value` in an image of any cell type.
+/// `RunComponents` of the cells with `values == value` in an image of bytes or wider values,
+/// 4-connected or with `eight` 8-connected.
 template <class T>
 RunComponents run_components_of(const std::vector<T>& values, int width, int height, T value, bool eight) {
   RunComponents out;
@@ -97,8 +67,19 @@ RunComponents run_components_of(const std::vector<T>& values, int width, int hei
     }
   }
   out.row_start[height] = runs.size();
-  join_run_components(out, eight);
+  DisjointSets joined(runs.size());
+  // 8-connectivity also joins runs touching at a corner.
+  for_each_vertical_contact(runs, out.row_start, eight ? 1 : 0,
+                            [&](std::size_t upper, std::size_t lower) { joined.join(lower, upper); });
+  out.component.resize(runs.size());
+  for (std::size_t i = 0; i < runs.size(); ++i) out.component[i] = joined.find(i);
   return out;
+}
+
+/// `RunComponents` of the cells with `mask == value` of a byte mask.
+inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int width, int height, std::uint8_t value,
+                                    bool eight) {
+  return run_components_of(mask, width, height, value, eight);
 }
 
 /// A component's runs: a view into `for_each_run_component`'s storage.
