@@ -69,7 +69,7 @@ std::size_t check_boundary_contract(const OccupancyGrid& g) {
     // The Voronoi builder accepts it and the skeleton stays in free space.
     const Skeleton skeleton = build_skeleton(space, boundary, g.resolution());
     for (const auto& branch : skeleton.branches)
-      for (const auto& s : branch.samples)
+      for (const auto& s : skeleton.samples_of(branch))
         CHECK(space.is_free(static_cast<int>(std::floor(s.position.x())), static_cast<int>(std::floor(s.position.y()))));
   }
   return refined;
@@ -1010,4 +1010,50 @@ TEST_CASE("a segmentation's labels take a small part of a byte a cell, the same 
   CHECK(graph.labels.memory_bytes() < graph.labels.size() / 4);
   CHECK(graph.labels == segmenter.segment_with_details(building.layout).graph.labels);
   CHECK_FALSE(segmenter.segment_with_details(building.layout).skeleton.branches.empty());
+}
+
+TEST_CASE("the skeleton's samples: one array in branch order; rooms found the same when the graph takes them over") {
+  const auto building = generate_building({}, 5);
+  const double res = building.layout.resolution();
+  const FreeSpace space = binarize(building.layout);
+  const BoundarySegments boundary = trace_boundary(space, res);
+  Skeleton skeleton = build_skeleton(space, boundary, res);
+  REQUIRE(skeleton.branches.size() > 10);
+  std::size_t next = 0;
+  for (const SkeletonBranch& branch : skeleton.branches) {
+    CHECK(branch.first_sample == next);  // branch after branch, no gaps
+    CHECK(branch.sample_count >= 2);
+    next += branch.sample_count;
+    double length = 0.0;
+    const SkeletonSamples samples = skeleton.samples_of(branch);
+    for (std::size_t i = 1; i < samples.size(); ++i) length += (samples[i].position - samples[i - 1].position).norm();
+    CHECK(length == branch.length);
+  }
+  CHECK(next == skeleton.samples.size());
+
+  const RoomParams params;
+  const RoomDetection copied = detect_rooms(skeleton, res, params);
+  const std::size_t node_count = skeleton.nodes.size();
+  const RoomDetection taken = detail::detect_rooms_taking_samples(skeleton, res, params);
+  CHECK(skeleton.samples.empty());
+  CHECK(skeleton.nodes.size() == node_count);
+  REQUIRE(taken.graph.samples.size() == copied.graph.samples.size());
+  for (std::size_t s = 0; s < copied.graph.samples.size(); ++s) {
+    const SkeletonSample& a = copied.graph.samples[s];
+    const SkeletonSample& b = taken.graph.samples[s];
+    CHECK(a.position == b.position);
+    CHECK(a.clearance == b.clearance);
+    CHECK(a.foot_a == b.foot_a);
+    CHECK(a.foot_b == b.foot_b);
+    const auto na = copied.graph.neighbours(static_cast<int>(s)), nb = taken.graph.neighbours(static_cast<int>(s));
+    CHECK(std::vector<int>(na.begin(), na.end()) == std::vector<int>(nb.begin(), nb.end()));
+  }
+  CHECK(taken.region_of_sample == copied.region_of_sample);
+  CHECK(taken.region_is_room == copied.region_is_room);
+  REQUIRE(taken.passages.size() == copied.passages.size());
+  for (std::size_t p = 0; p < copied.passages.size(); ++p) {
+    CHECK(taken.passages[p].sample == copied.passages[p].sample);
+    CHECK(taken.passages[p].line_a == copied.passages[p].line_a);
+    CHECK(taken.passages[p].line_b == copied.passages[p].line_b);
+  }
 }

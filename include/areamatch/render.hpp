@@ -182,7 +182,7 @@ inline void draw_world_dot(RgbImage& image, const OccupancyGrid& grid, const Eig
 inline void draw_skeleton(RgbImage& image, const Skeleton& skeleton, const Rgb& color = {90, 90, 90}) {
   for (const auto& branch : skeleton.branches) {
     if (branch.removed) continue;
-    for (const auto& s : branch.samples) {
+    for (const auto& s : skeleton.samples_of(branch)) {
       const Eigen::Vector2d p = s.position + skeleton.lattice_offset;
       const int c = static_cast<int>(std::floor(p.x())), r = static_cast<int>(std::floor(p.y()));
       if (c >= 0 && r >= 0 && c < image.width && r < image.height) image.set(c, r, color[0], color[1], color[2]);

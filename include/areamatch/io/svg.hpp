@@ -108,7 +108,7 @@ inline std::string area_graph_svg(const OccupancyGrid& grid, const AreaGraph& gr
     for (const auto& branch : skeleton->branches) {
       if (branch.removed) continue;
       svg += "<polyline points=\"";
-      for (const auto& sample : branch.samples) {
+      for (const auto& sample : skeleton->samples_of(branch)) {
         const Eigen::Vector2d p = sample.position + skeleton->lattice_offset - Eigen::Vector2d(0.5, 0.5);
         svg += format_double(std::round(p.x() * 100) / 100) + "," + format_double(std::round(p.y() * 100) / 100) + " ";
       }

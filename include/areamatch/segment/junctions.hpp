@@ -92,7 +92,8 @@ inline std::vector<Eigen::Vector2d> junction_feet(const Skeleton& skeleton, std:
   for (int b : skeleton.nodes[j].branches) {
     const auto& branch = skeleton.branches[b];
     if (branch.removed) continue;
-    const SkeletonSample& at = branch.from == J ? branch.samples.front() : branch.samples.back();
+    const SkeletonSamples samples = skeleton.samples_of(branch);
+    const SkeletonSample& at = branch.from == J ? samples.front() : samples.back();
     for (const Eigen::Vector2d& f : {at.foot_a, at.foot_b}) {
       if (std::none_of(feet.begin(), feet.end(), [&](const Eigen::Vector2d& e) { return (e - f).norm() < 0.5; }))
         feet.push_back(f);

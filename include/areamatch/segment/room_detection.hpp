@@ -9,6 +9,8 @@
 #include "skeleton.hpp"
 
 #include <algorithm>
+#include <cstdint>
+#include <limits>
 #include <string>
 #include <vector>
 
@@ -52,12 +54,33 @@ struct RoomParams {
   }
 };
 
+/// The samples of a `SampleGraph` by id: node samples first (id = node id), then the inner
+/// samples of every kept branch in branch order. Copies in one array, or (from a skeleton that is
+/// let go next) the skeleton's own array taken over, with where each inner sample lies in it: on
+/// a large floor the samples are tens of megabytes, and a copy beside the skeleton's was the
+/// segmentation's peak.
+class SampleStore {
+ public:
+  const SkeletonSample& operator[](std::size_t s) const {
+    if (s < leading_.size()) return leading_[s];
+    return taken_[inner_at_[s - leading_.size()]];
+  }
+  std::size_t size() const { return leading_.size() + inner_at_.size(); }
+  bool empty() const { return size() == 0; }
+
+ private:
+  friend struct SampleGraph;
+  std::vector<SkeletonSample> leading_;     ///< every sample (copies), or only the nodes' (taken)
+  std::vector<SkeletonSample> taken_;       ///< the skeleton's array (taken); empty with copies
+  std::vector<std::uint32_t> inner_at_;     ///< per inner sample, its place in `taken_`
+};
+
 /// The skeleton flattened to a graph of samples: node samples first (index = node id), then the
 /// inner samples of every kept branch. Adjacency is stored compactly (one list for all samples,
 /// each sample's neighbours in the order their links were made): a furnished map has ~10^5
 /// samples, and a vector per sample cost more than the rest of room detection.
 struct SampleGraph {
-  std::vector<SkeletonSample> samples;
+  SampleStore samples;
 
   /// A sample's neighbours, as a range of sample ids.
   struct Neighbours {
@@ -72,42 +95,78 @@ struct SampleGraph {
     return {adjacency.begin(node), adjacency.end(node)};
   }
 
+  /// The graph of `skeleton`'s samples, copied (sized exactly: a large floor has millions of
+  /// samples, and growing by doubling held up to three copies at once).
   static SampleGraph from(const Skeleton& skeleton) {
     SampleGraph g;
-    // Sized exactly: a large floor has millions of samples, and growing by doubling held up to
-    // three copies at once.
-    std::size_t inner = 0, link_count = 0;
+    std::vector<SkeletonSample>& all = g.samples.leading_;
+    all.reserve(skeleton.nodes.size() + inner_sample_count(skeleton));
+    for (const auto& node : skeleton.nodes) all.push_back(node.sample);
     for (const auto& branch : skeleton.branches) {
-      if (branch.removed) continue;
-      inner += branch.samples.size() > 2 ? branch.samples.size() - 2 : 0;
-      link_count += branch.samples.size() > 2 ? branch.samples.size() - 1 : 1;
+      if (branch.removed || branch.sample_count <= 2) continue;
+      const SkeletonSamples samples = skeleton.samples_of(branch);
+      all.insert(all.end(), samples.begin() + 1, samples.end() - 1);
     }
-    g.samples.reserve(skeleton.nodes.size() + inner);
-    for (const auto& node : skeleton.nodes) g.samples.push_back(node.sample);
-    // Links in order: (node or inner sample, next inner sample or node) along every kept branch.
-    std::vector<std::pair<int, int>> links;
-    links.reserve(link_count);
-    for (const auto& branch : skeleton.branches) {
-      if (branch.removed) continue;
-      int previous = branch.from;
-      for (std::size_t i = 1; i + 1 < branch.samples.size(); ++i) {
-        const int id = static_cast<int>(g.samples.size());
-        g.samples.push_back(branch.samples[i]);
-        links.emplace_back(previous, id);
-        previous = id;
-      }
-      links.emplace_back(previous, branch.to);
-    }
-    g.adjacency = detail::build_adjacency<int>(g.samples.size(), links.size(), [&](std::size_t k) {
-      const auto [a, b] = links[k];
-      return detail::LinkEnds<int>{static_cast<std::size_t>(a), b, static_cast<std::size_t>(b), a};
-    });
+    g.link(skeleton);
     return g;
   }
+
+  /// The same graph, with the same ids and samples, taking `skeleton.samples` over instead of
+  /// copying them: the skeleton has no samples afterwards (its nodes and branches stay).
+  static SampleGraph taking_samples(Skeleton& skeleton) {
+    if (skeleton.samples.size() >= std::numeric_limits<std::uint32_t>::max()) return from(skeleton);
+    SampleGraph g;
+    g.samples.leading_.reserve(skeleton.nodes.size());
+    for (const auto& node : skeleton.nodes) g.samples.leading_.push_back(node.sample);
+    g.samples.inner_at_.reserve(inner_sample_count(skeleton));
+    for (const auto& branch : skeleton.branches) {
+      if (branch.removed) continue;
+      for (std::size_t i = 1; i + 1 < branch.sample_count; ++i)
+        g.samples.inner_at_.push_back(static_cast<std::uint32_t>(branch.first_sample + i));
+    }
+    g.link(skeleton);
+    g.samples.taken_ = std::move(skeleton.samples);
+    skeleton.samples = {};
+    return g;
+  }
+
   double distance(int a, int b) const { return (samples[a].position - samples[b].position).norm(); }
 
  private:
   detail::AdjacencyLists<int> adjacency;  ///< neighbours of each sample, by sample id
+
+  static std::size_t inner_sample_count(const Skeleton& skeleton) {
+    std::size_t inner = 0;
+    for (const auto& branch : skeleton.branches) {
+      if (!branch.removed && branch.sample_count > 2) inner += branch.sample_count - 2;
+    }
+    return inner;
+  }
+
+  /// Links in order: (node or inner sample, next inner sample or node) along every kept branch,
+  /// inner samples numbered from the node count on, branch after branch.
+  void link(const Skeleton& skeleton) {
+    std::size_t link_count = 0;
+    for (const auto& branch : skeleton.branches) {
+      if (!branch.removed) link_count += branch.sample_count > 2 ? branch.sample_count - 1 : 1;
+    }
+    std::vector<std::pair<int, int>> links;
+    links.reserve(link_count);
+    int next_id = static_cast<int>(skeleton.nodes.size());
+    for (const auto& branch : skeleton.branches) {
+      if (branch.removed) continue;
+      int previous = branch.from;
+      for (std::size_t i = 1; i + 1 < branch.sample_count; ++i) {
+        links.emplace_back(previous, next_id);
+        previous = next_id++;
+      }
+      links.emplace_back(previous, branch.to);
+    }
+    adjacency = detail::build_adjacency<int>(static_cast<std::size_t>(next_id), links.size(), [&](std::size_t k) {
+      const auto [a, b] = links[k];
+      return detail::LinkEnds<int>{static_cast<std::size_t>(a), b, static_cast<std::size_t>(b), a};
+    });
+  }
 };
 
 /// A passage found on the skeleton: a door (at the clearance minimum of a narrow stretch) or one

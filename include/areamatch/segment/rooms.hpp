@@ -201,26 +201,42 @@ inline void assign_lone_nodes(RoomDetection& out, const Skeleton& skeleton) {
   }
 }
 
+/// Rooms, corridors and passages on `graph`, the sample graph of `skeleton` (which may have
+/// given the graph its samples, unless `params.split_at_junctions`: that reads them).
+inline RoomDetection detect_rooms_on(SampleGraph graph, const Skeleton& skeleton, double resolution, const RoomParams& params) {
+  RoomDetection out;
+  out.graph = std::move(graph);
+  // In cells, rounded to a micro-cell: clearances on the grid are often exact half cells, and
+  // which side of the threshold they fall on must not depend on floating-point noise.
+  const double half_door = std::round(room_clearance_m(params.door_width_m, resolution) / resolution * 1e6) / 1e6;
+  mark_rooms(out, half_door, params.room_margin_m / resolution);
+  std::vector<int> part_of_sample;
+  const std::vector<NarrowPart> parts = narrow_parts(out, part_of_sample);
+  for (std::size_t c = 0; c < parts.size(); ++c) {
+    assign_narrow_part(out, parts[c], static_cast<int>(c), part_of_sample, params.narrow_corridor_length_m / resolution,
+                       params.door_search_m / resolution);
+  }
+  assign_lone_nodes(out, skeleton);
+  if (params.split_at_junctions) split_at_junctions(out, skeleton, resolution, params);
+  return out;
+}
+
+/// `detect_rooms` that takes the skeleton's samples over instead of copying them
+/// (`SampleGraph::taking_samples`), for a caller that lets the skeleton go next, as
+/// `VoronoiSegmenter::segment` does. The same result. Splitting at junctions reads the
+/// branches' end samples, so with it they are copied.
+inline RoomDetection detect_rooms_taking_samples(Skeleton& skeleton, double resolution, const RoomParams& params = {}) {
+  params.validate();
+  SampleGraph graph = params.split_at_junctions ? SampleGraph::from(skeleton) : SampleGraph::taking_samples(skeleton);
+  return detect_rooms_on(std::move(graph), skeleton, resolution, params);
+}
+
 }  // namespace detail
 
 /// Finds rooms, narrow corridors and the passages between them on `skeleton` (lattice units
 /// inside; `resolution` converts the parameters' metres).
 inline RoomDetection detect_rooms(const Skeleton& skeleton, double resolution, const RoomParams& params = {}) {
   params.validate();
-  RoomDetection out;
-  out.graph = SampleGraph::from(skeleton);
-  // In cells, rounded to a micro-cell: clearances on the grid are often exact half cells, and
-  // which side of the threshold they fall on must not depend on floating-point noise.
-  const double half_door = std::round(detail::room_clearance_m(params.door_width_m, resolution) / resolution * 1e6) / 1e6;
-  detail::mark_rooms(out, half_door, params.room_margin_m / resolution);
-  std::vector<int> part_of_sample;
-  const std::vector<detail::NarrowPart> parts = detail::narrow_parts(out, part_of_sample);
-  for (std::size_t c = 0; c < parts.size(); ++c) {
-    detail::assign_narrow_part(out, parts[c], static_cast<int>(c), part_of_sample,
-                               params.narrow_corridor_length_m / resolution, params.door_search_m / resolution);
-  }
-  detail::assign_lone_nodes(out, skeleton);
-  if (params.split_at_junctions) detail::split_at_junctions(out, skeleton, resolution, params);
-  return out;
+  return detail::detect_rooms_on(SampleGraph::from(skeleton), skeleton, resolution, params);
 }
 }  // namespace areamatch

@@ -24,6 +24,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <limits>
 #include <vector>
 
@@ -43,14 +44,28 @@ struct SkeletonNode {
   std::vector<int> branches;  ///< ids of the branches ending here (twice for a self-loop)
 };
 
-/// A chain of Voronoi edges between two nodes, sampled at most `sample_step` apart.
-/// `samples.front()` lies at node `from`, `samples.back()` at node `to`.
+/// A chain of Voronoi edges between two nodes, sampled at most `sample_step` apart. Its samples
+/// are `Skeleton::samples_of(branch)`: the first lies at node `from`, the last at node `to`.
 struct SkeletonBranch {
   int from = -1;
   int to = -1;
-  std::vector<SkeletonSample> samples;
+  std::size_t first_sample = 0;  ///< where its samples start in `Skeleton::samples`
+  std::size_t sample_count = 0;
   double length = 0.0;  ///< lattice units
   bool removed = false; ///< pruned
+};
+
+/// A run of consecutive samples (a branch's), valid while its skeleton is neither changed nor gone.
+struct SkeletonSamples {
+  const SkeletonSample* first = nullptr;
+  const SkeletonSample* last = nullptr;
+  const SkeletonSample* begin() const { return first; }
+  const SkeletonSample* end() const { return last; }
+  std::size_t size() const { return static_cast<std::size_t>(last - first); }
+  bool empty() const { return first == last; }
+  const SkeletonSample& operator[](std::size_t i) const { return first[i]; }
+  const SkeletonSample& front() const { return *first; }
+  const SkeletonSample& back() const { return *(last - 1); }
 };
 
 struct Skeleton {
@@ -59,7 +74,15 @@ struct Skeleton {
   Eigen::Vector2d lattice_offset = Eigen::Vector2d::Zero();
   std::vector<SkeletonNode> nodes;
   std::vector<SkeletonBranch> branches;
+  /// Every branch's samples, branch after branch, in one array: a large floor has millions, and
+  /// an array per branch left the heap in tens of thousands of pieces once they were let go.
+  std::vector<SkeletonSample> samples;
   std::size_t voronoi_edges = 0;  ///< primary finite edges examined
+
+  SkeletonSamples samples_of(const SkeletonBranch& branch) const {
+    const SkeletonSample* first = samples.data() + branch.first_sample;
+    return {first, first + branch.sample_count};
+  }
 
   int degree(int node) const {
     int d = 0;
@@ -168,6 +191,7 @@ struct KeptEdge {
   Eigen::Vector2d p0, p1;
   VoronoiSite s0, s1;
   bool curved = false;
+  std::uint32_t sample_count = 0;  ///< how many samples `edge_samples` makes of it
 };
 
 /// The samples of a Voronoi edge from p0 to p1 at most `step` apart, with their clearance and
@@ -216,7 +240,7 @@ inline std::vector<KeptEdge> kept_edges(const CompactVoronoi& diagram, const Fre
     const Eigen::Vector2d p0(a.x, a.y), p1(b.x, b.y);
     if ((s0.foot(p0) - p0).norm() < min_clearance || (s0.foot(p1) - p1).norm() < min_clearance) continue;
     if (!edge_samples(p0, p1, edge.is_curved(), s0, s1, step, min_clearance, points, samples)) continue;
-    kept.push_back({edge.vertex[0], edge.vertex[1], p0, p1, s0, s1, edge.is_curved()});
+    kept.push_back({edge.vertex[0], edge.vertex[1], p0, p1, s0, s1, edge.is_curved(), static_cast<std::uint32_t>(samples.size())});
   }
   kept.shrink_to_fit();
   return kept;
@@ -240,6 +264,11 @@ inline void link_kept_edges(const std::vector<KeptEdge>& kept, std::size_t verte
     node_of_vertex[vertex] = id;
     return id;
   };
+  // Every kept edge goes into one branch, sharing its first sample with the edge before it:
+  // the edges' own counts bound the skeleton's samples, so the array is never moved.
+  std::size_t sample_bound = 0;
+  for (const KeptEdge& e : kept) sample_bound += e.sample_count;
+  skeleton.samples.reserve(sample_bound);
   std::vector<Eigen::Vector2d> points;
   std::vector<SkeletonSample> samples;
   auto sample_at = [&](std::size_t edge, std::size_t vertex) {
@@ -253,24 +282,25 @@ inline void link_kept_edges(const std::vector<KeptEdge>& kept, std::size_t verte
   auto walk = [&](std::size_t start_vertex, std::size_t start_edge) {
     SkeletonBranch branch;
     branch.from = node_of_vertex[start_vertex];
+    branch.first_sample = skeleton.samples.size();
+    std::vector<SkeletonSample>& all = skeleton.samples;
     std::size_t vertex = start_vertex, e = start_edge;
     while (true) {
       used[e] = true;
       // The edge's samples in walking order; the first is shared with the previous edge.
       edge_samples(kept[e], step, points, samples);
       const bool forward = kept[e].v0 == vertex;
-      const std::size_t skip = branch.samples.empty() ? 0 : 1;
-      if (forward) branch.samples.insert(branch.samples.end(), samples.begin() + static_cast<std::ptrdiff_t>(skip), samples.end());
-      else branch.samples.insert(branch.samples.end(), samples.rbegin() + static_cast<std::ptrdiff_t>(skip), samples.rend());
+      const std::size_t skip = all.size() == branch.first_sample ? 0 : 1;
+      if (forward) all.insert(all.end(), samples.begin() + static_cast<std::ptrdiff_t>(skip), samples.end());
+      else all.insert(all.end(), samples.rbegin() + static_cast<std::ptrdiff_t>(skip), samples.rend());
       vertex = forward ? kept[e].v1 : kept[e].v0;
       if (node_of_vertex[vertex] >= 0) break;
       const std::size_t* next = incident.begin(vertex);  // degree 2: this edge and the next
       e = next[0] == e ? next[1] : next[0];
     }
     branch.to = node_of_vertex[vertex];
-    branch.samples.shrink_to_fit();  // a large floor's branches hold millions of samples: no slack
-    for (std::size_t i = 1; i < branch.samples.size(); ++i)
-      branch.length += (branch.samples[i].position - branch.samples[i - 1].position).norm();
+    branch.sample_count = all.size() - branch.first_sample;
+    for (std::size_t i = branch.first_sample + 1; i < all.size(); ++i) branch.length += (all[i].position - all[i - 1].position).norm();
     const int id = static_cast<int>(skeleton.branches.size());
     skeleton.nodes[branch.from].branches.push_back(id);
     skeleton.nodes[branch.to].branches.push_back(id);
@@ -301,8 +331,9 @@ inline void prune_spurs(Skeleton& skeleton, double spur_length, double keep_clea
       if (from_leaf == to_leaf) continue;  // not a dead end (or an isolated piece)
       if (branch.length >= spur_length) continue;
       double widest = 0.0;
-      for (std::size_t i = 0; i + 1 < branch.samples.size(); ++i) {
-        const auto& s = from_leaf ? branch.samples[i] : branch.samples[branch.samples.size() - 1 - i];
+      const SkeletonSamples samples = skeleton.samples_of(branch);
+      for (std::size_t i = 0; i + 1 < samples.size(); ++i) {
+        const auto& s = from_leaf ? samples[i] : samples[samples.size() - 1 - i];
         widest = std::max(widest, s.clearance);
       }
       if (widest >= keep_clearance) continue;

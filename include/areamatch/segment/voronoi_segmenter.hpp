@@ -140,8 +140,12 @@ struct VoronoiSegmenter {
     opened = FreeSpace{};  // traced: neither is read again
     boundary = BoundarySegments{};
     const auto t3 = clock::now();
-    out.rooms = detect_rooms(out.skeleton, res, params.rooms);
-    if (!keep_skeleton) out.skeleton = Skeleton{};
+    if (keep_skeleton) {
+      out.rooms = detect_rooms(out.skeleton, res, params.rooms);
+    } else {  // the rooms' graph takes the skeleton's samples over, no copy beside them
+      out.rooms = detail::detect_rooms_taking_samples(out.skeleton, res, params.rooms);
+      out.skeleton = Skeleton{};
+    }
     const auto t4 = clock::now();
     const bool no_samples = out.rooms.graph.samples.empty();
     // Without details, the rooms' sample graph is let go before the labels are made, and the
