@@ -1037,6 +1037,7 @@ TEST_CASE("the skeleton's samples: one array in branch order; rooms found the sa
   const RoomDetection taken = detail::detect_rooms_taking_samples(skeleton, res, params);
   CHECK(skeleton.samples.empty());
   CHECK(skeleton.nodes.size() == node_count);
+  for (const SkeletonBranch& branch : skeleton.branches) CHECK(skeleton.samples_of(branch).empty());
   REQUIRE(taken.graph.samples.size() == copied.graph.samples.size());
   for (std::size_t s = 0; s < copied.graph.samples.size(); ++s) {
     const SkeletonSample& a = copied.graph.samples[s];

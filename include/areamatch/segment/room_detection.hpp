@@ -112,7 +112,8 @@ struct SampleGraph {
   }
 
   /// The same graph, with the same ids and samples, taking `skeleton.samples` over instead of
-  /// copying them: the skeleton has no samples afterwards (its nodes and branches stay).
+  /// copying them: the skeleton has no samples afterwards (its nodes, node samples and branches
+  /// stay, each branch with none).
   static SampleGraph taking_samples(Skeleton& skeleton) {
     if (skeleton.samples.size() >= std::numeric_limits<std::uint32_t>::max()) return from(skeleton);
     SampleGraph g;
@@ -127,6 +128,7 @@ struct SampleGraph {
     g.link(skeleton);
     g.samples.taken_ = std::move(skeleton.samples);
     skeleton.samples = {};
+    for (auto& branch : skeleton.branches) branch.first_sample = branch.sample_count = 0;  // nothing left to point into
     return g;
   }
 
