@@ -92,8 +92,9 @@ struct VoronoiSegmenter {
   VoronoiSegmenter() = default;
   explicit VoronoiSegmenter(Params p) : params(std::move(p)) {}
 
-  /// The Area Graph alone: the skeleton is let go once the rooms are found, before the areas
-  /// are labelled (on a large floor its samples are a fifth of the peak memory).
+  /// The Area Graph alone: the rooms' sample graph takes the skeleton's samples over (no copy),
+  /// and both are let go before the areas are labelled (on a large floor the samples are a fifth
+  /// of the peak memory).
   AreaGraph segment(const OccupancyGrid& grid) const { return run(grid, false).graph; }
 
   /// The Area Graph with what it was built from (skeleton, rooms) and the stages' timings.
