@@ -429,6 +429,11 @@ class Matcher {
                               result.statistics);
     });
     if (selected.finalists.empty()) return no_answer("no cluster survived the selection");
+    // The proposals are not read again: let them go before the answer's checks build their own
+    // (on a large floor they are tens of megabytes, and the checks are the match's peak).
+    std::vector<AreaPair>().swap(pairs);
+    std::vector<Hypothesis>().swap(hypotheses);
+    std::vector<Cluster>().swap(clusters);
 
     detail::report(progress, "check");
     detail::describe_answer(params, source, dest, source_data, dest_data, edges, selected, result);
