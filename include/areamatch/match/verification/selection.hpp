@@ -177,27 +177,36 @@ struct WholeMapSelection {
                             " m) reaches beyond the edge lookups (" + detail::format_double(reach) +
                             " m: the largest of refinement.gates_m, scale.sweep_gates_m and wall_inlier_distance_m)");
     }
-    std::vector<ScoredTransform> candidates;
+    // The candidates: the best few members of every cluster, named by their hypotheses (on a
+    // large floor there are ~10^5; their transforms are copied once the verified few are known).
+    std::vector<Ranked> ranked;
+    std::size_t candidate_count = 0;
+    for (const Cluster& cluster : in.clusters) candidate_count += std::min(params.members_per_cluster, cluster.members.size());
+    ranked.reserve(candidate_count);
     for (const Cluster& cluster : in.clusters) {
       for (std::size_t m = 0; m < std::min(params.members_per_cluster, cluster.members.size()); ++m) {
-        candidates.push_back({in.hypotheses[static_cast<std::size_t>(cluster.members[m])].T_dest_source, 0.0});
+        ranked.push_back({0.0, static_cast<std::size_t>(cluster.members[m])});
       }
     }
-    auto by_score = [](const ScoredTransform& a, const ScoredTransform& b) { return a.score > b.score; };
+    auto by_score = [](const auto& a, const auto& b) { return a.score > b.score; };
     // Unrefined candidates are ranked by the share of the source's walls near the destination's
     // edge (frontiers left out: a partial map's frontier is not a wall of the other map), first
     // on a few hundred wall points, then on all of them.
     const MapEdges& edges = in.edges;
     const std::vector<Eigen::Vector2d>& walls = edges.source_walls.empty() ? edges.source_points : edges.source_walls;
     const std::vector<Eigen::Vector2d> sparse_walls = detail::evenly_thinned(walls, params.sparse_samples);
+    score_sparse(ranked, in.hypotheses, sparse_walls, edges.dest_lookup, params, shared.threads);
+    std::stable_sort(ranked.begin(), ranked.end(), by_score);
+    if (ranked.size() > params.verify_candidates) ranked.resize(params.verify_candidates);
+    std::vector<ScoredTransform> candidates;
+    candidates.reserve(ranked.size());
+    for (const Ranked& r : ranked) candidates.push_back({in.hypotheses[r.hypothesis].T_dest_source, r.score});
+    std::vector<Ranked>().swap(ranked);
     auto score_on = [&](const std::vector<Eigen::Vector2d>& points) {
       detail::for_each_index(candidates.size(), shared.threads, [&](std::size_t i) {
         candidates[i].score = boundary_inlier_fraction(points, edges.dest_lookup, candidates[i].T, params.candidate_wall_distance_m);
       });
     };
-    score_sparse(candidates, sparse_walls, edges.dest_lookup, params, shared.threads);
-    std::stable_sort(candidates.begin(), candidates.end(), by_score);
-    if (candidates.size() > params.verify_candidates) candidates.resize(params.verify_candidates);
     score_on(walls);
     statistics.verified = candidates.size();
     std::stable_sort(candidates.begin(), candidates.end(), by_score);
@@ -234,8 +243,15 @@ struct WholeMapSelection {
   /// on, so a candidate stops counting once it cannot reach the worst of the best so far (its
   /// score is then below theirs, and it is cut as before): the kept candidates, their scores and
   /// their order are those of counting every point.
-  static void score_sparse(std::vector<ScoredTransform>& candidates, const std::vector<Eigen::Vector2d>& points,
-                           const BoundaryLookup& dest, const Params& params, unsigned threads) {
+  /// A candidate before it is verified: its first score and its hypothesis.
+  struct Ranked {
+    double score;
+    std::size_t hypothesis;
+  };
+
+  static void score_sparse(std::vector<Ranked>& candidates, const std::vector<Hypothesis>& hypotheses,
+                           const std::vector<Eigen::Vector2d>& points, const BoundaryLookup& dest, const Params& params,
+                           unsigned threads) {
     if (points.empty() || dest.empty()) {
       for (auto& c : candidates) c.score = 0.0;
       return;
@@ -249,7 +265,8 @@ struct WholeMapSelection {
       std::priority_queue<std::size_t, std::vector<std::size_t>, std::greater<>> best;  // the `keep` highest counts
       for (std::size_t i = b * per_block; i < std::min(candidates.size(), (b + 1) * per_block); ++i) {
         const std::size_t enough = keep == 0 || best.size() < keep ? 0 : best.top();
-        const std::size_t count = dest.count_within(points, candidates[i].T, params.candidate_wall_distance_m, enough);
+        const std::size_t count =
+            dest.count_within(points, hypotheses[candidates[i].hypothesis].T_dest_source, params.candidate_wall_distance_m, enough);
         candidates[i].score = static_cast<double>(count) / static_cast<double>(n);
         if (count < enough) continue;  // stopped early: below every kept count
         best.push(count);
