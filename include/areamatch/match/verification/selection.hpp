@@ -238,17 +238,17 @@ struct WholeMapSelection {
   }
 
  private:
-  /// The first, cheap ranking: each candidate's share of `points` within
-  /// `candidate_wall_distance_m` of the destination's edge. Only the best `verify_candidates` go
-  /// on, so a candidate stops counting once it cannot reach the worst of the best so far (its
-  /// score is then below theirs, and it is cut as before): the kept candidates, their scores and
-  /// their order are those of counting every point.
   /// A candidate before it is verified: its first score and its hypothesis.
   struct Ranked {
     double score;
     std::size_t hypothesis;
   };
 
+  /// The first, cheap ranking: each candidate's share of `points`, moved by its hypothesis, within
+  /// `candidate_wall_distance_m` of the destination's edge. Only the best `verify_candidates` go
+  /// on, so a candidate stops counting once it cannot reach the worst of the best so far (its
+  /// score is then below theirs, and it is cut as before): the kept candidates, their scores and
+  /// their order are those of counting every point.
   static void score_sparse(std::vector<Ranked>& candidates, const std::vector<Hypothesis>& hypotheses,
                            const std::vector<Eigen::Vector2d>& points, const BoundaryLookup& dest, const Params& params,
                            unsigned threads) {
