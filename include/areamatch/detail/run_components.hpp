@@ -4,6 +4,7 @@
 
 #include "blocks.hpp"
 #include "disjoint_sets.hpp"
+#include "span.hpp"
 
 #include <algorithm>
 #include <cstdint>
@@ -83,13 +84,7 @@ inline RunComponents run_components(const std::vector<std::uint8_t>& mask, int w
 }
 
 /// A component's runs: a view into `for_each_run_component`'s storage.
-struct RunSpan {
-  const CellRun* first = nullptr;
-  const CellRun* last = nullptr;
-  const CellRun* begin() const { return first; }
-  const CellRun* end() const { return last; }
-  std::size_t size() const { return static_cast<std::size_t>(last - first); }
-};
+using RunSpan = ConstSpan<CellRun>;
 
 /// Connected components of the cells with `mask == value`: calls `on_component(runs)` with each
 /// component's runs (a `RunSpan`, in raster order), components in the order of their first run.

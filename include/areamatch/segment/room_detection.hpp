@@ -83,13 +83,7 @@ struct SampleGraph {
   SampleStore samples;
 
   /// A sample's neighbours, as a range of sample ids.
-  struct Neighbours {
-    const int* first;
-    const int* last;
-    const int* begin() const { return first; }
-    const int* end() const { return last; }
-    std::size_t size() const { return static_cast<std::size_t>(last - first); }
-  };
+  using Neighbours = detail::ConstSpan<int>;
   Neighbours neighbours(int s) const {
     const auto node = static_cast<std::size_t>(s);
     return {adjacency.begin(node), adjacency.end(node)};

@@ -13,6 +13,7 @@
 
 #include "../detail/adjacency.hpp"
 #include "../detail/compact_voronoi.hpp"
+#include "../detail/span.hpp"
 #include "../detail/voronoi_circles.hpp"
 #include "../error.hpp"
 #include "binarize.hpp"
@@ -55,18 +56,8 @@ struct SkeletonBranch {
   bool removed = false; ///< pruned
 };
 
-/// A run of consecutive samples (a branch's), valid while its skeleton is neither changed nor gone.
-struct SkeletonSamples {
-  const SkeletonSample* first = nullptr;
-  const SkeletonSample* last = nullptr;
-  const SkeletonSample* begin() const { return first; }
-  const SkeletonSample* end() const { return last; }
-  std::size_t size() const { return static_cast<std::size_t>(last - first); }
-  bool empty() const { return first == last; }
-  const SkeletonSample& operator[](std::size_t i) const { return first[i]; }
-  const SkeletonSample& front() const { return *first; }
-  const SkeletonSample& back() const { return *(last - 1); }
-};
+/// A branch's samples, valid while its skeleton is neither changed nor gone.
+using SkeletonSamples = detail::ConstSpan<SkeletonSample>;
 
 struct Skeleton {
   /// Lattice coordinates here are those of the cropped free-space mask; add this offset for the
