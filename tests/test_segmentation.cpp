@@ -496,13 +496,11 @@ TEST_CASE("byte scans find and count the same bytes as a plain loop") {
     for (auto& b : row) b = static_cast<std::uint8_t>(long_runs ? (random.chance(0.05) ? 1 : 0) : random.integer(0, 2));
     const int from = random.integer(0, n), to = random.integer(from, n);
     const auto value = static_cast<std::uint8_t>(random.integer(0, 2));
-    int equal = from, not_equal = from, last_not_equal = to;
+    int equal = from, not_equal = from;
     while (equal < to && row[equal] != value) ++equal;
     while (not_equal < to && row[not_equal] == value) ++not_equal;
-    while (last_not_equal > from && row[last_not_equal - 1] == value) --last_not_equal;
     CHECK(detail::find_byte_equal(row.data(), from, to, value) == equal);
     CHECK(detail::find_byte_not_equal(row.data(), from, to, value) == not_equal);
-    CHECK(detail::find_last_byte_not_equal(row.data(), from, to, value) == last_not_equal);
     CHECK(detail::count_byte_equal(row.data() + from, static_cast<std::size_t>(to - from), value) ==
           static_cast<std::size_t>(std::count(row.begin() + from, row.begin() + to, value)));
   }
@@ -1057,4 +1055,42 @@ TEST_CASE("the skeleton's samples: one array in branch order; rooms found the sa
     CHECK(taken.passages[p].line_a == copied.passages[p].line_a);
     CHECK(taken.passages[p].line_b == copied.passages[p].line_b);
   }
+}
+
+TEST_CASE("free space held as its runs: the same cells, and the same skeleton as from the mask") {
+  detail::Random random(48);
+  for (int trial = 0; trial < 200; ++trial) {
+    const int W = random.integer(1, 40), H = random.integer(1, 20);
+    std::vector<std::uint8_t> mask(static_cast<std::size_t>(W) * H);
+    for (auto& cell : mask) cell = static_cast<std::uint8_t>(random.chance(0.6) ? random.integer(1, 3) : 0);
+    const detail::RowRuns runs = detail::nonzero_runs(mask, W, H);
+    std::size_t cells = 0;
+    for (const detail::CellRun& run : runs.runs) {
+      CHECK(run.begin < run.end);
+      cells += static_cast<std::size_t>(run.end - run.begin);
+    }
+    CHECK(cells == static_cast<std::size_t>(std::count_if(mask.begin(), mask.end(), [](std::uint8_t b) { return b != 0; })));
+    for (int r = -1; r <= H; ++r)
+      for (int c = -1; c <= W; ++c) {
+        const bool inside = c >= 0 && r >= 0 && c < W && r < H && mask[static_cast<std::size_t>(r) * W + c] != 0;
+        CHECK(runs.contains(c, r) == inside);
+      }
+  }
+  // The segmenter builds its skeleton from the runs once the boundary is traced.
+  RobotMapParams rp;
+  rp.rotation_rad = 0.7;
+  rp.max_clutter_per_room = 2;
+  const auto robot = make_robot_map(generate_building(BuildingParams{}, 6), rp, 6);
+  const double res = robot.grid.resolution();
+  const FreeSpace space = binarize(robot.grid);
+  const BoundarySegments boundary = trace_boundary(space, res);
+  const detail::RowRuns runs = detail::nonzero_runs(space.free, space.width, space.height);
+  const Skeleton from_mask = build_skeleton(space, boundary, res);
+  const Skeleton from_runs = detail::skeleton_of([&](int c, int r) { return runs.contains(c, r); },
+                                                 Eigen::Vector2d(space.offset_col, space.offset_row), boundary, res, {});
+  REQUIRE(from_mask.samples.size() > 100);
+  REQUIRE(from_runs.samples.size() == from_mask.samples.size());
+  for (std::size_t s = 0; s < from_mask.samples.size(); ++s) CHECK(from_runs.samples[s].position == from_mask.samples[s].position);
+  CHECK(from_runs.branches.size() == from_mask.branches.size());
+  CHECK(from_runs.voronoi_edges == from_mask.voronoi_edges);
 }

@@ -65,20 +65,6 @@ inline int find_byte_not_equal(const std::uint8_t* row, int from, int to, std::u
                          [value](std::uint8_t b) { return b != value; });
 }
 
-/// One past the last index in [from, to) whose byte differs from `value`, or `from` when none
-/// does: the end of a row's content. Word by word from the back (a word equal to the pattern in
-/// every byte holds no differing byte, whatever the byte order).
-inline int find_last_byte_not_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
-  const std::uint64_t pattern = 0x0101010101010101ULL * value;
-  int end = to;
-  for (std::uint64_t word = 0; end - from >= 8; end -= 8) {
-    std::memcpy(&word, row + end - 8, 8);
-    if (word != pattern) break;
-  }
-  while (end > from && row[end - 1] == value) --end;
-  return end;
-}
-
 /// The first index in [from, to) whose byte equals `value`, or `to`.
 inline int find_byte_equal(const std::uint8_t* row, int from, int to, std::uint8_t value) {
   // Zero bytes of word ^ pattern are the equal ones.

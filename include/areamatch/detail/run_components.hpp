@@ -16,22 +16,53 @@ struct CellRun {
   int row, begin, end;
 };
 
-/// The horizontal runs of the cells with `mask == value`, in raster order, and their connected
-/// components (fast on maps, which are long runs).
-struct RunComponents {
+/// Horizontal runs of cells, in raster order: a mask kept as its runs, far smaller than its bytes
+/// on a map.
+struct RowRuns {
   std::vector<CellRun> runs;
   std::vector<std::size_t> row_start;  ///< the runs of row r are [row_start[r], row_start[r + 1])
-  std::vector<std::size_t> component;  ///< per run: the first run of its component
 
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
-  /// The run holding cell (col, row), or `none`.
-  std::size_t run_at(int col, int row) const {
-    const auto first = runs.begin() + static_cast<std::ptrdiff_t>(row_start[static_cast<std::size_t>(row)]);
-    const auto last = runs.begin() + static_cast<std::ptrdiff_t>(row_start[static_cast<std::size_t>(row) + 1]);
-    const auto after = std::upper_bound(first, last, col, [](int c, const CellRun& run) { return c < run.begin; });
-    if (after == first || col >= (after - 1)->end) return none;
-    return static_cast<std::size_t>(after - 1 - runs.begin());
+
+  ConstSpan<CellRun> row(int r) const {
+    return {runs.data() + row_start[static_cast<std::size_t>(r)], runs.data() + row_start[static_cast<std::size_t>(r) + 1]};
   }
+  /// The run holding cell (col, row), or `none`; `row` within the image.
+  std::size_t run_at(int col, int row) const {
+    const ConstSpan<CellRun> in_row = this->row(row);
+    const CellRun* after = std::upper_bound(in_row.begin(), in_row.end(), col, [](int c, const CellRun& run) { return c < run.begin; });
+    if (after == in_row.begin() || col >= (after - 1)->end) return none;
+    return static_cast<std::size_t>(after - 1 - runs.data());
+  }
+  /// Whether cell (col, row) lies in a run; rows outside the image hold none.
+  bool contains(int col, int row) const {
+    return row >= 0 && static_cast<std::size_t>(row) + 1 < row_start.size() && run_at(col, row) != none;
+  }
+};
+
+/// The runs of the cells of an image (`width` x `height` values, row-major) that equal `value`
+/// (`equal`) or differ from it.
+template <class T>
+RowRuns row_runs_of(const T* values, int width, int height, T value, bool equal) {
+  RowRuns out;
+  out.row_start.assign(static_cast<std::size_t>(height) + 1, 0);
+  for (int r = 0; r < height; ++r) {
+    out.row_start[r] = out.runs.size();
+    const T* row = values + static_cast<std::size_t>(r) * static_cast<std::size_t>(width);
+    for (int c = find_value(row, 0, width, value, equal); c < width; c = find_value(row, c, width, value, equal)) {
+      const int begin = c;
+      c = find_value(row, c, width, value, !equal);
+      out.runs.push_back({r, begin, c});
+    }
+  }
+  out.row_start[height] = out.runs.size();
+  return out;
+}
+
+/// The horizontal runs of the cells with `mask == value`, in raster order, and their connected
+/// components (fast on maps, which are long runs).
+struct RunComponents : RowRuns {
+  std::vector<std::size_t> component;  ///< per run: the first run of its component
 };
 
 /// Calls `touch(upper, lower)` (indices into `runs`) for every two runs of consecutive rows that
@@ -56,18 +87,8 @@ void for_each_vertical_contact(const std::vector<Run>& runs, const std::vector<s
 template <class T>
 RunComponents run_components_of(const std::vector<T>& values, int width, int height, T value, bool eight) {
   RunComponents out;
-  auto& runs = out.runs;
-  out.row_start.assign(static_cast<std::size_t>(height) + 1, 0);
-  for (int r = 0; r < height; ++r) {
-    out.row_start[r] = runs.size();
-    const T* row = &values[static_cast<std::size_t>(r) * static_cast<std::size_t>(width)];
-    for (int c = find_value(row, 0, width, value, true); c < width; c = find_value(row, c, width, value, true)) {
-      const int begin = c;
-      c = find_value(row, c, width, value, false);
-      runs.push_back({r, begin, c});
-    }
-  }
-  out.row_start[height] = runs.size();
+  static_cast<RowRuns&>(out) = row_runs_of(values.data(), width, height, value, true);
+  const auto& runs = out.runs;
   DisjointSets joined(runs.size());
   // 8-connectivity also joins runs touching at a corner.
   for_each_vertical_contact(runs, out.row_start, eight ? 1 : 0,

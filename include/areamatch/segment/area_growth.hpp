@@ -59,16 +59,17 @@ inline constexpr int unlabelled = -1, open_core = -2, barrier = -3, not_free = -
 inline bool unreached(int label) { return label == unlabelled || label == open_core; }
 
 /// The working labels before growth: each cell `not_free`, `unlabelled` or `open_core`, from the
-/// free-space mask and its erosion by `core_distance` cells (`erode_rows`, a band at a time).
+/// free space's runs (`free`: a W x H mask's, taken so they go on return) and its erosion by
+/// `core_distance` cells (`erode_rows`, a band at a time). The runs, not the byte mask: on a large
+/// floor they are a small fraction of it, and the labels are the largest buffer of the stage.
 template <class Label>
-std::vector<Label> initial_labels(const FreeSpace& space, double core_distance) {
-  const auto W = static_cast<std::size_t>(space.width);
-  std::vector<Label> label(W * static_cast<std::size_t>(space.height));
-  erode_rows(space.free.data(), space.width, space.height, core_distance, [&](int r, const std::uint8_t* core) {
-    const std::uint8_t* free = &space.free[static_cast<std::size_t>(r) * W];
-    Label* out = &label[static_cast<std::size_t>(r) * W];
-    for (std::size_t c = 0; c < W; ++c) {
-      out[c] = static_cast<Label>(core[c] ? open_core : free[c] ? unlabelled : not_free);
+std::vector<Label> initial_labels(RowRuns free, int W, int H, double core_distance) {
+  const auto w = static_cast<std::size_t>(W);
+  std::vector<Label> label(w * static_cast<std::size_t>(H), static_cast<Label>(not_free));
+  erode_rows(free, W, H, core_distance, [&](int r, const std::uint8_t* core) {
+    Label* out = &label[static_cast<std::size_t>(r) * w];
+    for (const CellRun& run : free.row(r)) {
+      for (int c = run.begin; c < run.end; ++c) out[c] = static_cast<Label>(core[c] ? open_core : unlabelled);
     }
   });
   return label;
@@ -139,18 +140,20 @@ struct Seed {
   int region;
 };
 
-/// Every region's seeds, in sample order (samples off the free space left out): all that growth
-/// reads of the sample graph, so the graph can be let go before the labels are made.
-inline std::vector<Seed> region_seeds(const FreeSpace& space, const RoomDetection& rooms) {
+/// Every region's seeds, in sample order (samples off the free space, whose runs are `free` in a
+/// mask `width` cells wide, left out): all that growth reads of the sample graph, so the graph can
+/// be let go before the labels are made.
+inline std::vector<Seed> region_seeds(const RowRuns& free, int width, const RoomDetection& rooms) {
   const SampleGraph& g = rooms.graph;
   std::vector<Seed> seeds;
+  seeds.reserve(g.samples.size());  // made beside the graph, at its largest: no growth by doubling
   for (std::size_t s = 0; s < g.samples.size(); ++s) {
     const int region = rooms.region_of_sample[s];
     if (region < 0) continue;
     const int c = static_cast<int>(std::floor(g.samples[s].position.x()));
     const int r = static_cast<int>(std::floor(g.samples[s].position.y()));
-    if (!space.is_free(c, r)) continue;
-    seeds.push_back({static_cast<std::uint32_t>(static_cast<std::size_t>(r) * space.width + c), region});
+    if (c < 0 || c >= width || !free.contains(c, r)) continue;
+    seeds.push_back({static_cast<std::uint32_t>(static_cast<std::size_t>(r) * width + c), region});
   }
   return seeds;
 }

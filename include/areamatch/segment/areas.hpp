@@ -42,17 +42,15 @@ namespace areamatch {
 namespace detail {
 
 /// Steps 1–4 on working labels of type `Label` (`initial_labels`: a region id or a state per cell
-/// of the free space's extent): passages sealed, regions grown from `seeds` over the core and then
-/// the fringe, barrier cells assigned, and the result as runs — the working labels and the seeds
-/// are let go on return. With `release`, the free-space mask (`release->free`, the same object as
-/// `space`) is let go once the labels hold it: growth reads only the labels.
+/// of the free space's extent, `space`, from its runs `free`, let go once the labels are made):
+/// passages sealed, regions grown from `seeds` over the core and then the fringe, barrier cells
+/// assigned, and the result as runs — the working labels and the seeds are let go on return.
 template <class Label>
-LabelRuns grow_labels(const FreeSpace& space, const RoomDetection& rooms, std::vector<Seed> seeds, const AreaParams& params,
-                      double res, FreeSpace* release) {
+LabelRuns grow_labels(const FreeSpace& space, RowRuns free, const RoomDetection& rooms, std::vector<Seed> seeds,
+                      const AreaParams& params, double res) {
   const int W = space.width, H = space.height;
   // The core: free cells at least min_clearance from every wall, where the skeleton lives.
-  std::vector<Label> label = initial_labels<Label>(space, params.min_clearance_m / res + 0.5);
-  if (release) std::vector<std::uint8_t>().swap(release->free);
+  std::vector<Label> label = initial_labels<Label>(std::move(free), W, H, params.min_clearance_m / res + 0.5);
   const std::vector<std::uint32_t> barrier_cells = seal_passages(space, rooms, label);
   const int fringe_steps = static_cast<int>(std::ceil((params.min_clearance_m + params.fringe_m) / res));
   grow_regions(W, H, seeds, fringe_steps, label);
@@ -61,13 +59,12 @@ LabelRuns grow_labels(const FreeSpace& space, const RoomDetection& rooms, std::v
   return label_runs(label, W, H);
 }
 
-/// `build_areas` from what it reads of the rooms: their passages and region count (`rooms`;
-/// its sample graph is not read), the regions' seeds and the facts of steps 10–11.
-/// With `release` (the same object as `space`), its mask is let go once the labels hold it; only
-/// its extent is read after.
-inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
-                                  std::vector<Seed> seeds, const RoomFacts& facts, const AreaParams& params,
-                                  FreeSpace* release = nullptr) {
+/// `build_areas` from the free space's runs (`free`; of `space` only the extent is read, so its
+/// mask may be let go already) and what it reads of the rooms: their passages and region count
+/// (`rooms`; its sample graph is not read), the regions' seeds and the facts of steps 10–11.
+inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& space, RowRuns free,
+                                  const RoomDetection& rooms, std::vector<Seed> seeds, const RoomFacts& facts,
+                                  const AreaParams& params) {
   params.validate();
   const std::size_t N = static_cast<std::size_t>(space.width) * static_cast<std::size_t>(space.height);
   const double res = grid.resolution();
@@ -82,8 +79,8 @@ inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& sp
 
   // 16-bit working labels when the region ids fit: on a large floor they were the largest buffer.
   LabelRuns runs = rooms.region_count() < std::numeric_limits<std::int16_t>::max()
-                       ? grow_labels<std::int16_t>(space, rooms, std::move(seeds), params, res, release)
-                       : grow_labels<std::int32_t>(space, rooms, std::move(seeds), params, res, release);
+                       ? grow_labels<std::int16_t>(space, std::move(free), rooms, std::move(seeds), params, res)
+                       : grow_labels<std::int32_t>(space, std::move(free), rooms, std::move(seeds), params, res);
   const Pieces pieces = find_pieces(runs);
   const auto min_cells = static_cast<std::size_t>(std::ceil(params.min_area_m2 / (res * res)));
   const PieceAreas areas = merge_small_pieces(runs, pieces, min_cells);
@@ -96,16 +93,22 @@ inline AreaGraph build_areas_from(const OccupancyGrid& grid, const FreeSpace& sp
   return graph;
 }
 
-/// `build_areas` that lets go of `rooms`' sample graph (and its samples' regions) before the
-/// labels are made, and of the free-space mask once the labels hold it (`space.free` is empty on
-/// return): what `VoronoiSegmenter::segment` uses, which returns only the graph.
-inline AreaGraph build_areas_releasing(const OccupancyGrid& grid, FreeSpace& space, RoomDetection& rooms,
-                                       const AreaParams& params) {
-  std::vector<Seed> seeds = region_seeds(space, rooms);
+/// `build_areas` from the free space's runs (`free`; of `space` only the extent is read).
+inline AreaGraph build_areas_on_runs(const OccupancyGrid& grid, const FreeSpace& space, RowRuns free,
+                                     const RoomDetection& rooms, const AreaParams& params) {
+  std::vector<Seed> seeds = region_seeds(free, space.width, rooms);
+  return build_areas_from(grid, space, std::move(free), rooms, std::move(seeds), room_facts(rooms), params);
+}
+
+/// `build_areas_on_runs` that lets go of `rooms`' sample graph (and its samples' regions) before
+/// the labels are made: what `VoronoiSegmenter::segment` uses, which returns only the graph.
+inline AreaGraph build_areas_releasing(const OccupancyGrid& grid, const FreeSpace& space, RowRuns free,
+                                       RoomDetection& rooms, const AreaParams& params) {
+  std::vector<Seed> seeds = region_seeds(free, space.width, rooms);
   const RoomFacts facts = room_facts(rooms);
   rooms.graph = SampleGraph{};
   std::vector<int>().swap(rooms.region_of_sample);
-  return build_areas_from(grid, space, rooms, std::move(seeds), facts, params, &space);
+  return build_areas_from(grid, space, std::move(free), rooms, std::move(seeds), facts, params);
 }
 
 }  // namespace detail
@@ -114,7 +117,8 @@ inline AreaGraph build_areas_releasing(const OccupancyGrid& grid, FreeSpace& spa
 /// the free-cell count for `covered_fraction`.
 inline AreaGraph build_areas(const OccupancyGrid& grid, const FreeSpace& space, const RoomDetection& rooms,
                              const AreaParams& params = {}) {
-  return detail::build_areas_from(grid, space, rooms, detail::region_seeds(space, rooms), detail::room_facts(rooms), params);
+  return detail::build_areas_on_runs(grid, space, detail::nonzero_runs(space.free, space.width, space.height), rooms,
+                                     params);
 }
 
 }  // namespace areamatch

@@ -7,6 +7,7 @@
 /// Distances in cells: the caller converts from metres at the grid's resolution.
 
 #include "../detail/blocks.hpp"
+#include "../detail/run_components.hpp"
 #include "binarize.hpp"
 
 #include <algorithm>
@@ -22,13 +23,10 @@ namespace detail {
 // The erosion's byte kernels, each over `count` cells of distinct rows, called through
 // `in_blocks` (detail/blocks.hpp: vectorised at -O2 too).
 
-/// Vertical distance to a non-free cell from the row above's, capped (0 on non-free cells).
-inline void grow_from_above(std::uint8_t* __restrict row, const std::uint8_t* __restrict above,
-                            const std::uint8_t* __restrict free, int count, std::uint8_t cap) {
-  for (int k = 0; k < count; ++k) {
-    const std::uint8_t grown = above[k] < cap ? static_cast<std::uint8_t>(above[k] + 1) : cap;
-    row[k] = free[k] ? grown : 0;
-  }
+/// Vertical distance to a non-free cell from the row above's, capped (over a run of free cells).
+inline void grow_from_above(std::uint8_t* __restrict row, const std::uint8_t* __restrict above, int count,
+                            std::uint8_t cap) {
+  for (int k = 0; k < count; ++k) row[k] = above[k] < cap ? static_cast<std::uint8_t>(above[k] + 1) : cap;
 }
 
 /// The same from the row below, kept where smaller.
@@ -54,14 +52,14 @@ inline void and_both_at_least(std::uint8_t* __restrict out, const std::uint8_t* 
 /// instead of a full-size buffer.
 inline constexpr int erosion_band_rows = 256;
 
-/// The erosion of `mask` (`W` x `H`, one byte per cell) by a disc of `distance` cells (centre to
-/// centre; beyond the mask's edge counts as outside), row by row: calls `on_row(r, core)` for
-/// r = 0, 1, ..., H − 1, where `core` points to that row's W bytes (1: no cell outside the mask
-/// closer than `distance`), valid during the call. Works on byte column distances capped at the
-/// disc's reach, so a row's depends only on the rows within reach: they are found a band of rows
-/// at a time, and the working memory is a band, not the mask's size.
+/// The erosion of a mask (`W` x `H`, given by its runs of cells `inside`) by a disc of `distance`
+/// cells (centre to centre; beyond the mask's edge counts as outside), row by row: calls
+/// `on_row(r, core)` for r = 0, 1, ..., H − 1, where `core` points to that row's W bytes (1: no
+/// cell outside the mask closer than `distance`), valid during the call. Works on byte column
+/// distances capped at the disc's reach, so a row's depends only on the rows within reach: they
+/// are found a band of rows at a time, and the working memory is a band, not the mask's size.
 template <class OnRow>
-void erode_rows(const std::uint8_t* mask, int W, int H, double distance, OnRow&& on_row) {
+void erode_rows(const RowRuns& inside, int W, int H, double distance, OnRow&& on_row) {
   if (W <= 0 || H <= 0) return;
   const double threshold = distance * distance;
   const int reach = static_cast<int>(std::ceil(distance));
@@ -70,11 +68,12 @@ void erode_rows(const std::uint8_t* mask, int W, int H, double distance, OnRow&&
   const auto w = static_cast<std::size_t>(W);
   // Each row's mask cells lie in [first[r], last[r]); outside it the column distances and the
   // core stay 0, so every pass skips it — on a rotated or L-shaped building, most of the box.
-  std::vector<int> first(static_cast<std::size_t>(H)), last(static_cast<std::size_t>(H));
+  std::vector<int> first(static_cast<std::size_t>(H), W), last(static_cast<std::size_t>(H), W);
   for (int r = 0; r < H; ++r) {
-    const std::uint8_t* row = mask + static_cast<std::size_t>(r) * w;
-    first[r] = find_byte_not_equal(row, 0, W, 0);
-    last[r] = find_last_byte_not_equal(row, first[r], W, 0);
+    const auto runs = inside.row(r);
+    if (runs.empty()) continue;
+    first[r] = runs.begin()->begin;
+    last[r] = (runs.end() - 1)->end;
   }
   // Core iff for every column offset dx within reach: vertical(c + dx) ≥ need[|dx|], the
   // smallest vertical distance that keeps that column's nearest obstacle far enough. need[0] ≥ 1
@@ -98,17 +97,17 @@ void erode_rows(const std::uint8_t* mask, int W, int H, double distance, OnRow&&
     auto vrow = [&](int r) { return vertical.data() + static_cast<std::size_t>(r - top) * w; };
     {
       std::uint8_t* row = vrow(top);
-      const std::uint8_t* free = mask + static_cast<std::size_t>(top) * w;
       std::fill(row, row + w, std::uint8_t{0});
       const std::uint8_t start = top == 0 ? 1 : cap;
-      for (int c = first[top]; c < last[top]; ++c) row[c] = free[c] ? start : 0;
+      for (const CellRun& run : inside.row(top)) std::fill(row + run.begin, row + run.end, start);
     }
     for (int r = top + 1; r < bottom; ++r) {
       const std::uint8_t* above = vrow(r - 1);
-      const std::uint8_t* free = mask + static_cast<std::size_t>(r) * w;
       std::uint8_t* row = vrow(r);
       std::fill(row, row + w, std::uint8_t{0});
-      in_blocks(first[r], last[r], [&](int c, int count) { grow_from_above(row + c, above + c, free + c, count, cap); });
+      for (const CellRun& run : inside.row(r)) {
+        in_blocks(run.begin, run.end, [&](int c, int count) { grow_from_above(row + c, above + c, count, cap); });
+      }
     }
     if (bottom == H) {
       std::uint8_t* last_row = vrow(H - 1);
@@ -141,11 +140,16 @@ void erode_rows(const std::uint8_t* mask, int W, int H, double distance, OnRow&&
   }
 }
 
-/// `erode_rows` into a full mask.
+/// The runs of a byte mask's cells that are not 0.
+inline RowRuns nonzero_runs(const std::vector<std::uint8_t>& mask, int W, int H) {
+  return row_runs_of(mask.data(), W, H, std::uint8_t{0}, false);
+}
+
+/// `erode_rows` of a byte mask (not 0: inside) into a full mask.
 inline std::vector<std::uint8_t> erode_mask(const std::vector<std::uint8_t>& mask, int W, int H, double distance) {
   const std::size_t N = static_cast<std::size_t>(W) * static_cast<std::size_t>(H);
   std::vector<std::uint8_t> core(N, 0);
-  erode_rows(mask.data(), W, H, distance, [&](int r, const std::uint8_t* row) {
+  erode_rows(nonzero_runs(mask, W, H), W, H, distance, [&](int r, const std::uint8_t* row) {
     std::copy(row, row + W, core.begin() + static_cast<std::ptrdiff_t>(static_cast<std::size_t>(r) * static_cast<std::size_t>(W)));
   });
   return core;

@@ -209,13 +209,14 @@ inline void edge_samples(const KeptEdge& e, double step, std::vector<Eigen::Vect
   edge_samples(e.p0, e.p1, e.curved, e.s0, e.s1, step, -std::numeric_limits<double>::infinity(), points, samples);
 }
 
-/// The diagram's finite primary edges that run through free space at least `min_clearance` (lattice
-/// units) from the walls all along, sampled every `step`; each undirected edge once. Counts the
-/// edges looked at in `skeleton.voronoi_edges`.
-inline std::vector<KeptEdge> kept_edges(const CompactVoronoi& diagram, const FreeSpace& space,
-                                        const BoundarySegments& boundary, double min_clearance, double step, Skeleton& skeleton) {
+/// The diagram's finite primary edges that run through free space (`is_free(col, row)` of a
+/// lattice cell) at least `min_clearance` (lattice units) from the walls all along, sampled every
+/// `step`; each undirected edge once. Counts the edges looked at in `skeleton.voronoi_edges`.
+template <class IsFree>
+std::vector<KeptEdge> kept_edges(const CompactVoronoi& diagram, const IsFree& is_free, const BoundarySegments& boundary,
+                                 double min_clearance, double step, Skeleton& skeleton) {
   auto is_free_at = [&](const CompactVoronoi::Vertex& v) {
-    return space.is_free(static_cast<int>(std::floor(v.x)), static_cast<int>(std::floor(v.y)));
+    return is_free(static_cast<int>(std::floor(v.x)), static_cast<int>(std::floor(v.y)));
   };
   std::vector<KeptEdge> kept;
   std::vector<Eigen::Vector2d> points;
@@ -334,31 +335,40 @@ inline void prune_spurs(Skeleton& skeleton, double spur_length, double keep_clea
   }
 }
 
+/// `build_skeleton` of the free space whose cells `is_free(col, row)` tells (lattice coordinates;
+/// `lattice_offset` places them in the grid): the segmenter's, which holds the free space as runs
+/// by then.
+template <class IsFree>
+Skeleton skeleton_of(const IsFree& is_free, const Eigen::Vector2d& lattice_offset, const BoundarySegments& boundary,
+                     double resolution, const SkeletonParams& params) {
+  params.validate();
+  Skeleton skeleton;
+  skeleton.lattice_offset = lattice_offset;
+  if (boundary.segments.empty()) return skeleton;
+
+  std::vector<KeptEdge> kept;
+  std::size_t vertex_count = 0;
+  {  // the diagram is let go before the skeleton is linked: on a large floor it is the largest piece
+    CompactVoronoi diagram;  // Boost's diagram at a fifth of its memory
+    // Boost.Polygon's builder, with corner circle events computed without multiprecision when
+    // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
+    construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram, params.fast_circle_events);
+    kept = kept_edges(diagram, is_free, boundary, params.min_clearance_m / resolution, params.sample_step_m / resolution,
+                      skeleton);
+    vertex_count = diagram.vertices().size();
+  }
+  link_kept_edges(kept, vertex_count, params.sample_step_m / resolution, skeleton);
+  prune_spurs(skeleton, params.spur_length_m / resolution, params.keep_clearance_m / resolution);
+  return skeleton;
+}
+
 }  // namespace detail
 
 /// Builds the pruned skeleton of `space` from its boundary (see the file comment).
 inline Skeleton build_skeleton(const FreeSpace& space, const BoundarySegments& boundary, double resolution,
                                const SkeletonParams& params = {}) {
-  params.validate();
-  Skeleton skeleton;
-  skeleton.lattice_offset = Eigen::Vector2d(space.offset_col, space.offset_row);
-  if (boundary.segments.empty()) return skeleton;
-
-  std::vector<detail::KeptEdge> kept;
-  std::size_t vertex_count = 0;
-  {  // the diagram is let go before the skeleton is linked: on a large floor it is the largest piece
-    detail::CompactVoronoi diagram;  // Boost's diagram at a fifth of its memory
-    // Boost.Polygon's builder, with corner circle events computed without multiprecision when
-    // that is provably as accurate (detail/voronoi_circles.hpp; about half the diagram's time).
-    detail::construct_segment_voronoi(boundary.segments.begin(), boundary.segments.end(), &diagram,
-                                      params.fast_circle_events);
-    kept = detail::kept_edges(diagram, space, boundary, params.min_clearance_m / resolution,
-                              params.sample_step_m / resolution, skeleton);
-    vertex_count = diagram.vertices().size();
-  }
-  detail::link_kept_edges(kept, vertex_count, params.sample_step_m / resolution, skeleton);
-  detail::prune_spurs(skeleton, params.spur_length_m / resolution, params.keep_clearance_m / resolution);
-  return skeleton;
+  return detail::skeleton_of([&space](int col, int row) { return space.is_free(col, row); },
+                             Eigen::Vector2d(space.offset_col, space.offset_row), boundary, resolution, params);
 }
 
 }  // namespace areamatch

@@ -137,7 +137,14 @@ struct VoronoiSegmenter {
     }
     out.refined_rings = boundary.refined_rings;
     const auto t2 = clock::now();
-    out.skeleton = build_skeleton(passable, boundary, res, skeleton_params);
+    // Traced: from here on the free space is read cell by cell only, so it is held as its runs
+    // (on a large floor a quarter of the mask) and the mask is let go; `space` keeps its extent.
+    detail::RowRuns free_runs = detail::nonzero_runs(space.free, space.width, space.height);
+    std::vector<std::uint8_t>().swap(space.free);
+    out.skeleton = open_traced ? build_skeleton(opened, boundary, res, skeleton_params)
+                               : detail::skeleton_of([&free_runs](int col, int row) { return free_runs.contains(col, row); },
+                                                     Eigen::Vector2d(space.offset_col, space.offset_row), boundary, res,
+                                                     skeleton_params);
     opened = FreeSpace{};  // traced: neither is read again
     boundary = BoundarySegments{};
     const auto t3 = clock::now();
@@ -149,10 +156,9 @@ struct VoronoiSegmenter {
     }
     const auto t4 = clock::now();
     const bool no_samples = out.rooms.graph.samples.empty();
-    // Without details, the rooms' sample graph is let go before the labels are made, and the
-    // free-space mask once they hold it.
-    out.graph = keep_skeleton ? build_areas(grid, space, out.rooms, area_params)
-                              : detail::build_areas_releasing(grid, space, out.rooms, area_params);
+    // Without details, the rooms' sample graph is let go before the labels are made.
+    out.graph = keep_skeleton ? detail::build_areas_on_runs(grid, space, std::move(free_runs), out.rooms, area_params)
+                              : detail::build_areas_releasing(grid, space, std::move(free_runs), out.rooms, area_params);
     if (out.graph.areas.empty()) {
       if (grid.count().free == 0 && !params.binarize.unknown_is_free) {
         out.graph.reason = "the map has no free cells";
