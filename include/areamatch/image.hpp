@@ -18,9 +18,9 @@ namespace areamatch {
 inline constexpr int max_image_side = 20000;
 
 /// Largest accepted map in cells (e.g. 14 000 × 14 000; 500 000 m² at 0.05 m: a 400 × 300 m
-/// floor turned by 37° needs 96 M). Matching a pair peaks at about 8 bytes per cell of the two
-/// maps (measured: 715–735 MB for the 400 × 300 m generated pair's 97 M cells,
-/// docs/performance.md), so a pair at this size needs about 3 GB; the limit keeps a corrupt or
+/// floor turned by 37° needs 96 M). Matching a pair peaks at about 6 bytes per cell of the two
+/// maps (measured with the CLI: 567–587 MiB for the 400 × 300 m generated pair's 97 M cells,
+/// docs/performance.md), so a pair at this size needs about 2.5 GB; the limit keeps a corrupt or
 /// absurd header from asking for more.
 inline constexpr long long max_grid_cells = 200'000'000;
 
