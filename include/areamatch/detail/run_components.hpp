@@ -24,6 +24,7 @@ struct RowRuns {
 
   static constexpr std::size_t none = static_cast<std::size_t>(-1);
 
+  /// Row r's runs, left to right; r within the image.
   ConstSpan<CellRun> row(int r) const {
     return {runs.data() + row_start[static_cast<std::size_t>(r)], runs.data() + row_start[static_cast<std::size_t>(r) + 1]};
   }

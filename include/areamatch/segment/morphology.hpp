@@ -1,9 +1,9 @@
 #pragma once
 /// \file segment/morphology.hpp
-/// Erosion and opening of free space by a disc, on byte masks (one byte per cell): the area stage
-/// grows regions from the free space eroded by the skeleton's clearance (`build_areas`, which
-/// takes the erosion a row at a time, `erode_rows`), and the segmenter opens free space before
-/// tracing when `BoundaryParams::min_traced_width_m` is set.
+/// Erosion and opening of free space by a disc: the area stage grows regions from the free space
+/// eroded by the skeleton's clearance (`build_areas`, which takes the erosion a row at a time from
+/// the free space's runs, `erode_rows`), and the segmenter opens free space (a byte mask, one byte
+/// per cell) before tracing when `BoundaryParams::min_traced_width_m` is set.
 /// Distances in cells: the caller converts from metres at the grid's resolution.
 
 #include "../detail/blocks.hpp"
