@@ -35,7 +35,7 @@ struct RowRuns {
     if (after == in_row.begin() || col >= (after - 1)->end) return none;
     return static_cast<std::size_t>(after - 1 - runs.data());
   }
-  /// Whether cell (col, row) lies in a run; rows outside the image hold none.
+  /// Whether cell (col, row) lies in a run; a cell outside the image lies in none.
   bool contains(int col, int row) const {
     return row >= 0 && static_cast<std::size_t>(row) + 1 < row_start.size() && run_at(col, row) != none;
   }
@@ -87,8 +87,7 @@ void for_each_vertical_contact(const std::vector<Run>& runs, const std::vector<s
 /// 4-connected or with `eight` 8-connected.
 template <class T>
 RunComponents run_components_of(const std::vector<T>& values, int width, int height, T value, bool eight) {
-  RunComponents out;
-  static_cast<RowRuns&>(out) = row_runs_of(values.data(), width, height, value, true);
+  RunComponents out{row_runs_of(values.data(), width, height, value, true), {}};
   const auto& runs = out.runs;
   DisjointSets joined(runs.size());
   // 8-connectivity also joins runs touching at a corner.

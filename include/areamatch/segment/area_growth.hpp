@@ -152,7 +152,7 @@ inline std::vector<Seed> region_seeds(const RowRuns& free, int width, const Room
     if (region < 0) continue;
     const int c = static_cast<int>(std::floor(g.samples[s].position.x()));
     const int r = static_cast<int>(std::floor(g.samples[s].position.y()));
-    if (c < 0 || c >= width || !free.contains(c, r)) continue;
+    if (!free.contains(c, r)) continue;
     seeds.push_back({static_cast<std::uint32_t>(static_cast<std::size_t>(r) * width + c), region});
   }
   return seeds;
