@@ -102,6 +102,15 @@ TEST_CASE("a broken generated map: the broken piece is found with its turn") {
       return (q - c.robot.breaks.front().point).dot(normal) > 0.0;
     };
     CHECK(side_of(a.brokenness.pieces[0]) != side_of(a.brokenness.pieces[1]));
+    // Each piece has its own warp, so the walls beside the cut land where they belong too (one
+    // smooth field blended the two sides over a control cell there).
+    REQUIRE(a.warp.field.piece_fields().size() == 2);
+    std::vector<double> errors;
+    for (const Eigen::Vector2d& p : detail::wall_points(c.robot.grid, 0.1)) errors.push_back((a.warp.field.apply(p) - c.robot.true_dest(p)).norm());
+    std::sort(errors.begin(), errors.end());
+    const double p95 = errors[errors.size() * 95 / 100];
+    MESSAGE("warp error at the walls, 95th percentile: " << p95 << " m");
+    CHECK(p95 < 0.15);
   }
 }
 

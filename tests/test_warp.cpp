@@ -171,3 +171,45 @@ TEST_CASE("a map without walls warps rigidly and says so") {
   const Eigen::Vector2d p(0.7, 0.9);
   CHECK((w.field.apply(p) - p).norm() == 0.0);
 }
+
+TEST_CASE("a broken map's warp: each point moves with its piece's field, and a gap between pieces has no preimage") {
+  // Two pieces split at x = 0: the left one stays, the right one is moved 0.5 m to the right, so
+  // that the destination strip 0 < x < 0.5 m is a gap no source point reaches.
+  const Similarity2 rigid{0.0, Eigen::Vector2d(1.0, 2.0)};
+  WarpField left(rigid, Eigen::Vector2d(-10.0, -10.0), 1.0, 21, 21), right = left;
+  for (std::size_t k = 0; k < right.node_count(); ++k) right.node_displacement(k) = Eigen::Vector2d(0.5, 0.0);
+  PieceLabels labels;
+  labels.origin = Eigen::Vector2d(-10.0, -10.0);
+  labels.cell_m = 0.5;
+  labels.columns = labels.rows = 40;
+  for (int r = 0; r < labels.rows; ++r) {
+    for (int col = 0; col < labels.columns; ++col) labels.labels.push_back(col < 20 ? 0 : 1);
+  }
+  CHECK(labels.count() == 2);
+  CHECK(labels.at(Eigen::Vector2d(-0.1, 3.0)) == 0);
+  CHECK(labels.at(Eigen::Vector2d(0.1, 3.0)) == 1);
+  CHECK(labels.at(Eigen::Vector2d(50.0, 50.0)) == 1);  // beyond the raster: the nearest cell's
+  WarpField field(rigid);
+  field.set_pieces(labels, {left, right});
+  CHECK_FALSE(field.is_rigid());
+  const Eigen::Vector2d a(-0.2, 1.0), b(0.2, 1.0);
+  CHECK((field.apply(a) - (rigid * a)).norm() < 1e-12);
+  CHECK((field.apply(b) - (rigid * b + Eigen::Vector2d(0.5, 0.0))).norm() < 1e-12);
+  for (const Eigen::Vector2d& p : {a, b}) {
+    const auto x = field.preimage(field.apply(p));
+    REQUIRE(x.has_value());
+    CHECK((*x - p).norm() < 1e-6);
+    CHECK((field.inverse(field.apply(p)) - p).norm() < 1e-6);
+  }
+  // In the gap: no preimage; `inverse` gives a point the warp takes within the gap's width of it,
+  // and a map resampled through the warp is unknown there.
+  const Eigen::Vector2d in_gap = rigid * Eigen::Vector2d(0.25, 1.0);
+  CHECK_FALSE(field.preimage(in_gap).has_value());
+  CHECK((field.apply(field.inverse(in_gap)) - in_gap).norm() <= 0.5 + 1e-9);
+  OccupancyGrid source(40, 40, 0.5, Pose2{-10.0, -10.0, 0.0}, CellState::free);
+  const OccupancyGrid resampled = resample_through(source, field, GridInfo::of(source));
+  const Eigen::Vector2i gap_cell = resampled.world_to_cell(Eigen::Vector2d(1.25, 3.0));   // x 0.25 before the rigid shift
+  const Eigen::Vector2i kept_cell = resampled.world_to_cell(Eigen::Vector2d(0.25, 3.0));  // x -0.75: the left piece
+  CHECK(resampled.at(gap_cell.x(), gap_cell.y()) == CellState::unknown);
+  CHECK(resampled.at(kept_cell.x(), kept_cell.y()) == CellState::free);
+}

@@ -25,6 +25,7 @@
 #include <cmath>
 #include <cstddef>
 #include <limits>
+#include <optional>
 #include <set>
 #include <utility>
 #include <vector>
@@ -83,7 +84,10 @@ inline Coverage map_coverage(const OccupancyGrid& map, const AreaGraph& map_grap
   const std::size_t n = reference_graph.areas.size();
   std::vector<std::size_t> seen(n, 0);
   for (std::size_t k = 0; k < reference_raster.labelled_count(); ++k) {
-    const Eigen::Vector2i cell = map.world_to_cell(warp.inverse(reference_raster.centre(k), 1e-4));
+    // In a gap between a broken map's pieces no map point lies: not explored.
+    const std::optional<Eigen::Vector2d> x = warp.preimage(reference_raster.centre(k), 1e-4);
+    if (!x) continue;
+    const Eigen::Vector2i cell = map.world_to_cell(*x);
     if (map.contains(cell.x(), cell.y()) && map.at(cell.x(), cell.y()) == CellState::free) {
       ++seen[static_cast<std::size_t>(reference_raster.centre_labels[k])];
     }

@@ -27,6 +27,7 @@
 #include "../match/verification/correspondence.hpp"
 #include "../match/verification/refine.hpp"
 #include "../transform.hpp"
+#include "../warp/field.hpp"
 #include "params.hpp"
 #include "tiles.hpp"
 
@@ -98,6 +99,27 @@ struct Brokenness {
     const std::size_t t = tile_at(map_point);
     const int piece = piece_at(map_point);
     return piece == piece_of_tile[t] ? tile_fit[t] : pieces[static_cast<std::size_t>(piece)].T_reference_map;
+  }
+  /// The labelling of `piece_at` as a raster (the finer cells where there are, else the tiles),
+  /// for a warp that moves each piece with its own field (`WarpStart::pieces`); empty for a map
+  /// in one piece.
+  PieceLabels labels() const {
+    PieceLabels out;
+    if (pieces.size() <= 1 || piece_of_tile.empty()) return out;
+    out.origin = tile_origin;
+    if (piece_cells.empty()) {
+      out.cell_m = tile_m;
+      out.columns = tile_columns;
+      out.rows = tile_rows;
+      out.labels = piece_of_tile;
+    } else {
+      const int per_tile = static_cast<int>(std::lround(tile_m / piece_cell_m));
+      out.cell_m = piece_cell_m;
+      out.columns = tile_columns * per_tile;
+      out.rows = tile_rows * per_tile;
+      out.labels = piece_cells;
+    }
+    return out;
   }
   /// Birk's brokenness: the pieces beyond the main one (0 for a map in one piece).
   std::size_t broken_pieces() const { return pieces.empty() ? 0 : pieces.size() - 1; }

@@ -113,11 +113,15 @@ inline MapAssessment assess_match(const OccupancyGrid& map, const AreaGraph& map
   const Brokenness& pieces = out.brokenness;
   WarpStart start_from_tiles;
   if (!pieces.tile_fit.empty()) {
-    start_from_tiles.displacement = [&](const Eigen::Vector2d& p) {
-      return Eigen::Vector2d(pieces.local_fit(p) * p - T * p);
+    // Each piece's warp starts from its tiles' fits, and beyond its own cells (its grid reaches
+    // across a cut) from the piece's fit, not the neighbour's.
+    start_from_tiles.displacement = [&](const Eigen::Vector2d& p, int piece) {
+      const bool own = pieces.pieces.size() <= 1 || pieces.piece_at(p) == piece;
+      const Similarity2& fit = own ? pieces.local_fit(p) : pieces.pieces[static_cast<std::size_t>(piece)].T_reference_map;
+      return Eigen::Vector2d(fit * p - T * p);
     };
   }
-  if (pieces.pieces.size() > 1) start_from_tiles.piece = [&](const Eigen::Vector2d& p) { return pieces.piece_at(p); };
+  start_from_tiles.pieces = pieces.labels();
   out.warp = fit_warp(map, reference, T, params.warp, start_from_tiles);
   const auto warped = detail::Clock::now();
   out.timings.warp_s = detail::seconds_between(pieces_found, warped);

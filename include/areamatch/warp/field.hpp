@@ -2,7 +2,10 @@
 /// \file warp/field.hpp
 /// A smooth deformation from a source map's world frame to a destination's: a rigid (similarity)
 /// transform plus a displacement interpolated bilinearly over a regular control grid laid on the
-/// source. Fitted by `fit_warp` (warp/fit.hpp); applied to points here, forwards and backwards.
+/// source — or, for a map broken into rigid pieces (a failed loop closure), one such grid per
+/// piece, each point displaced by its own piece's, so that the warp jumps at a cut instead of
+/// smearing it over a control cell. Fitted by `fit_warp` (warp/fit.hpp); applied to points here,
+/// forwards and backwards.
 
 #include "../transform.hpp"
 
@@ -12,9 +15,32 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <limits>
+#include <optional>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
+
+/// Which piece of a broken map each part of its world belongs to: labels on a square raster
+/// (source world; a point beyond it takes the nearest cell's). Empty: one piece.
+struct PieceLabels {
+  Eigen::Vector2d origin = Eigen::Vector2d::Zero();  ///< the corner of cell (0, 0), lowest x and y
+  double cell_m = 1.0;
+  int columns = 0, rows = 0;
+  std::vector<int> labels;  ///< row-major from `origin`, each in [0, count())
+
+  bool empty() const { return labels.empty(); }
+  int count() const { return labels.empty() ? 1 : *std::max_element(labels.begin(), labels.end()) + 1; }
+  /// The piece at a source point.
+  int at(const Eigen::Vector2d& source_world) const {
+    if (labels.empty()) return 0;
+    const Eigen::Vector2d u = (source_world - origin) / cell_m;
+    const int c = std::clamp(static_cast<int>(std::floor(u.x())), 0, columns - 1);
+    const int r = std::clamp(static_cast<int>(std::floor(u.y())), 0, rows - 1);
+    return labels[static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(c)];
+  }
+};
 
 class WarpField {
  public:
@@ -64,8 +90,28 @@ class WarpField {
     return s;
   }
 
+  /// Makes this a broken map's warp: the displacement at a point is that of `fields[k]`, k its
+  /// piece in `labels` (each field with this one's rigid part); this field's own nodes are then
+  /// not read. `fields` must hold one field per label.
+  void set_pieces(PieceLabels labels, std::vector<WarpField> fields) {
+    piece_labels_ = std::move(labels);
+    piece_fields_ = std::move(fields);
+  }
+  /// The pieces' own fields (empty: one field, this one's nodes) and which points each displaces.
+  const std::vector<WarpField>& piece_fields() const { return piece_fields_; }
+  const PieceLabels& piece_labels() const { return piece_labels_; }
+
   /// The displacement at a source point (destination metres).
   Eigen::Vector2d displacement(const Eigen::Vector2d& source_world) const {
+    if (!piece_fields_.empty()) {
+      return piece_fields_[static_cast<std::size_t>(piece_labels_.at(source_world))].own_displacement(source_world);
+    }
+    return own_displacement(source_world);
+  }
+
+  /// The displacement interpolated from this field's own nodes (for a broken map's warp, not the
+  /// pieces'): what a fit on this grid solves for.
+  Eigen::Vector2d own_displacement(const Eigen::Vector2d& source_world) const {
     const Stencil s = stencil(source_world);
     Eigen::Vector2d d = Eigen::Vector2d::Zero();
     for (std::size_t k = 0; k < 4; ++k) d += s.weights[k] * displacement_[s.nodes[k]];
@@ -74,6 +120,9 @@ class WarpField {
 
   /// Whether no node is displaced: the field is its rigid part alone.
   bool is_rigid() const {
+    if (!piece_fields_.empty()) {
+      return std::all_of(piece_fields_.begin(), piece_fields_.end(), [](const WarpField& f) { return f.is_rigid(); });
+    }
     return std::all_of(displacement_.begin(), displacement_.end(), [](const Eigen::Vector2d& d) { return d.isZero(0.0); });
   }
 
@@ -87,17 +136,33 @@ class WarpField {
 
   /// Destination world → source world: the point the warp takes to `dest_world`, by fixed-point
   /// iteration x ← T⁻¹(y − d(x)) (which converges while the displacement bends less than the
-  /// rigid part, as any warp `fit_warp` makes does); within `tolerance_m` of exact.
+  /// rigid part, as any warp `fit_warp` makes does); within `tolerance_m` of exact. In a gap
+  /// between a broken map's pieces, which no source point reaches (`preimage` says none), the one
+  /// of the pieces' own inverses that the warp takes nearest to `dest_world` (within the gap's
+  /// width of it).
   Eigen::Vector2d inverse(const Eigen::Vector2d& dest_world, double tolerance_m = 1e-6) const {
-    const Eigen::Affine2d& back = rigid_back_;
-    Eigen::Vector2d x = back * dest_world;
-    for (int iteration = 0; iteration < 50; ++iteration) {
-      const Eigen::Vector2d next = back * (dest_world - displacement(x));
-      const double moved = (next - x).norm();
-      x = next;
-      if (moved < tolerance_m) break;
+    if (piece_fields_.empty()) return inverse_of_own(dest_world, tolerance_m);
+    if (const auto x = preimage(dest_world, tolerance_m)) return *x;
+    Eigen::Vector2d nearest = Eigen::Vector2d::Zero();
+    double best = std::numeric_limits<double>::infinity();
+    for (const WarpField& piece : piece_fields_) {
+      const Eigen::Vector2d x = piece.inverse_of_own(dest_world, tolerance_m);
+      const double off = (apply(x) - dest_world).norm();
+      if (off < best) best = off, nearest = x;
     }
-    return x;
+    return nearest;
+  }
+
+  /// The source point the warp takes to `dest_world` (as `inverse`), or none where no source
+  /// point goes: a gap between a broken map's pieces. A broken map's warp is inverted piece by
+  /// piece; where pieces overlap after the warp, the first piece whose own inverse lies in it.
+  std::optional<Eigen::Vector2d> preimage(const Eigen::Vector2d& dest_world, double tolerance_m = 1e-6) const {
+    if (piece_fields_.empty()) return inverse_of_own(dest_world, tolerance_m);
+    for (std::size_t k = 0; k < piece_fields_.size(); ++k) {
+      const Eigen::Vector2d x = piece_fields_[k].inverse_of_own(dest_world, tolerance_m);
+      if (piece_labels_.at(x) == static_cast<int>(k)) return x;
+    }
+    return std::nullopt;
   }
 
  private:
@@ -108,6 +173,21 @@ class WarpField {
   double spacing_ = 1.0;
   int columns_ = 2, rows_ = 2;
   std::vector<Eigen::Vector2d> displacement_ = std::vector<Eigen::Vector2d>(4, Eigen::Vector2d::Zero());
+  PieceLabels piece_labels_;
+  std::vector<WarpField> piece_fields_;  // a broken map's: one per piece (vector of an incomplete type: C++17)
+
+  // `inverse` through this field's own nodes.
+  Eigen::Vector2d inverse_of_own(const Eigen::Vector2d& dest_world, double tolerance_m) const {
+    const Eigen::Affine2d& back = rigid_back_;
+    Eigen::Vector2d x = back * dest_world;
+    for (int iteration = 0; iteration < 50; ++iteration) {
+      const Eigen::Vector2d next = back * (dest_world - own_displacement(x));
+      const double moved = (next - x).norm();
+      x = next;
+      if (moved < tolerance_m) break;
+    }
+    return x;
+  }
 };
 
 }  // namespace areamatch

@@ -43,17 +43,19 @@
 #include <cstdint>
 #include <functional>
 #include <limits>
+#include <utility>
 #include <vector>
 
 namespace areamatch {
 
-/// Where a warp starts (both optional): `displacement` (source world → destination metres) gives
-/// the nodes' first displacements — e.g. each part of a map moved by its own rigid fit, so that
-/// walls farther off than the first gate are paired all the same; `piece` labels the source's
-/// rigid pieces (assess/pieces.hpp), and the warp does not resist bending between two of them.
+/// Where a warp starts (both optional): `displacement` (a source point and the piece whose warp
+/// asks, 0 for a map in one piece → destination metres) gives the nodes' first displacements —
+/// e.g. each part of a map moved by its own rigid fit, so that walls farther off than the first
+/// gate are paired all the same; `pieces` labels the source's rigid pieces (assess/pieces.hpp):
+/// each piece then gets its own warp, fitted on its own walls, and the whole jumps at a cut.
 struct WarpStart {
-  std::function<Eigen::Vector2d(const Eigen::Vector2d&)> displacement;
-  std::function<int(const Eigen::Vector2d&)> piece;
+  std::function<Eigen::Vector2d(const Eigen::Vector2d&, int)> displacement;
+  PieceLabels pieces;
 };
 
 /// A fitted warp and how well it lays the walls, before and after.
@@ -167,12 +169,143 @@ inline void report_wall_fit(const std::vector<Eigen::Vector2d>& points, const st
 
 }  // namespace detail
 
+namespace detail {
+
+/// A field fitted on `points` (with their free `sides`) over their extent: the early gates on the
+/// coarse grid, then the last on the fine grid from there (a bilinear field is itself on the
+/// finer grid, so the fine warp starts exactly where the coarse one ended); the rest term still
+/// pulls towards the start (`start_at`), not the coarse warp. Returns the field and the pairs of
+/// its last solve.
+inline std::pair<WarpField, std::size_t> fit_field(const OccupancyGrid& source, const std::vector<Eigen::Vector2d>& points,
+                                                   const std::vector<Eigen::Vector2d>& sides, const BoundaryLookup& lookup,
+                                                   const Similarity2& T_dest_source, const WarpParams& params,
+                                                   const std::function<Eigen::Vector2d(const Eigen::Vector2d&)>& start_at) {
+  const std::array<Eigen::Vector2d, 2> extent = control_extent(source, points, params);
+  const Eigen::Vector2d lo = extent[0], hi = extent[1];
+  // A control grid of `spacing` over [lo, hi], its nodes displaced where the start says.
+  auto start_field = [&](double spacing) {
+    WarpField field(T_dest_source, lo, spacing, static_cast<int>(std::ceil((hi.x() - lo.x()) / spacing)) + 1,
+                    static_cast<int>(std::ceil((hi.y() - lo.y()) / spacing)) + 1);
+    if (start_at) {
+      for (int j = 0; j < field.rows(); ++j) {
+        for (int i = 0; i < field.columns(); ++i) field.node_displacement(field.node(i, j)) = start_at(field.node_position(i, j));
+      }
+    }
+    return field;
+  };
+  WarpField field = start_field(params.control_spacing_m);
+  if (points.empty() || lookup.empty()) return {field, 0};
+
+  // The gates [first, last) on `f`; returns the pairs of its last solve.
+  constexpr std::size_t min_pairs = 10;
+  auto run_gates = [&](WarpField& f, WarpSystem& system, std::size_t first, std::size_t last, bool from_near_start) {
+    std::size_t paired = 0;
+    for (std::size_t g = first; g < last; ++g) {
+      for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
+        const auto pairs = warp_pairs(f, points, sides, lookup, params.gates_m[g], params.keep_fraction);
+        if (pairs.size() < min_pairs) break;
+        if (!system.solve(f, pairs, points, lookup, params, from_near_start)) break;
+        paired = pairs.size();
+      }
+    }
+    return paired;
+  };
+  const std::size_t gates = params.gates_m.size();
+  if (params.coarse_spacing_m > params.control_spacing_m && gates > 1) {
+    WarpField coarse = start_field(params.coarse_spacing_m);
+    {
+      WarpSystem coarse_system(coarse, params);
+      run_gates(coarse, coarse_system, 0, gates - 1, false);
+    }
+    WarpSystem system(field, params);
+    for (int j = 0; j < field.rows(); ++j) {
+      for (int i = 0; i < field.columns(); ++i) {
+        field.node_displacement(field.node(i, j)) = coarse.displacement(field.node_position(i, j));
+      }
+    }
+    const std::size_t paired = run_gates(field, system, gates - 1, gates, true);
+    return {field, paired};
+  }
+  WarpSystem system(field, params);
+  const std::size_t paired = run_gates(field, system, 0, gates, false);
+  return {field, paired};
+}
+
+/// Where a broken map's pieces meet, their labels decided again by the pieces' warps: on cells of
+/// `WarpParams::piece_label_cell_m`, each cell holding source wall points within
+/// `piece_boundary_m` of another piece's cells goes to the piece (of those within that reach)
+/// whose warp lays its points nearest the destination's walls facing their way (each distance
+/// capped at the last gate); ties and cells without walls keep their label. A piece's labels came
+/// from rigid fits of whole tiles; its warp follows the walls to within centimetres, so it tells
+/// which side of a cut a wall lies on more finely.
+inline PieceLabels relabel_pieces(const PieceLabels& labels, const std::vector<WarpField>& fields,
+                                  const std::vector<Eigen::Vector2d>& points, const std::vector<Eigen::Vector2d>& sides,
+                                  const BoundaryLookup& lookup, const WarpParams& params) {
+  PieceLabels out;
+  out.origin = labels.origin;
+  out.cell_m = params.piece_label_cell_m;
+  out.columns = std::max(1, static_cast<int>(std::ceil(labels.columns * labels.cell_m / out.cell_m)));
+  out.rows = std::max(1, static_cast<int>(std::ceil(labels.rows * labels.cell_m / out.cell_m)));
+  const auto columns = static_cast<std::size_t>(out.columns);
+  out.labels.resize(columns * static_cast<std::size_t>(out.rows));
+  for (int r = 0; r < out.rows; ++r) {
+    for (int c = 0; c < out.columns; ++c) {
+      out.labels[static_cast<std::size_t>(r) * columns + static_cast<std::size_t>(c)] =
+          labels.at(out.origin + out.cell_m * Eigen::Vector2d(c + 0.5, r + 0.5));
+    }
+  }
+  // The wall points of each cell, in the points' order.
+  std::vector<std::vector<std::size_t>> in_cell(out.labels.size());
+  for (std::size_t i = 0; i < points.size(); ++i) {
+    const Eigen::Vector2d u = (points[i] - out.origin) / out.cell_m;
+    const int c = std::clamp(static_cast<int>(std::floor(u.x())), 0, out.columns - 1);
+    const int r = std::clamp(static_cast<int>(std::floor(u.y())), 0, out.rows - 1);
+    in_cell[static_cast<std::size_t>(r) * columns + static_cast<std::size_t>(c)].push_back(i);
+  }
+  const int reach = static_cast<int>(std::ceil(params.piece_boundary_m / out.cell_m));
+  const double cap = params.gates_m.back();
+  const std::vector<int> before = out.labels;
+  const Eigen::Matrix2d turn = fields.front().rigid().linear() / fields.front().rigid().scale;
+  std::vector<int> candidates;
+  for (int r = 0; r < out.rows; ++r) {
+    for (int c = 0; c < out.columns; ++c) {
+      const std::size_t cell = static_cast<std::size_t>(r) * columns + static_cast<std::size_t>(c);
+      if (in_cell[cell].empty()) continue;
+      candidates.assign(1, before[cell]);
+      for (int rr = std::max(0, r - reach); rr <= std::min(out.rows - 1, r + reach); ++rr) {
+        for (int cc = std::max(0, c - reach); cc <= std::min(out.columns - 1, c + reach); ++cc) {
+          const int other = before[static_cast<std::size_t>(rr) * columns + static_cast<std::size_t>(cc)];
+          if (std::find(candidates.begin(), candidates.end(), other) == candidates.end()) candidates.push_back(other);
+        }
+      }
+      if (candidates.size() == 1) continue;
+      double best = std::numeric_limits<double>::infinity();
+      for (const int k : candidates) {
+        const WarpField& field = fields[static_cast<std::size_t>(k)];
+        double cost = 0.0;
+        for (const std::size_t i : in_cell[cell]) {
+          const Eigen::Vector2d y = field.apply(points[i]);
+          const Eigen::Vector2d* q = lookup.nearest_facing(y, turn * sides[i]);
+          const double d = q ? std::min((*q - y).norm(), cap) : cap;
+          cost += d * d;
+        }
+        if (cost < best) best = cost, out.labels[cell] = k;  // the current label first: ties keep it
+      }
+    }
+  }
+  return out;
+}
+
+}  // namespace detail
+
 /// The warp from `source` to `dest` that starts from `T_dest_source` (a match's answer) and bends
 /// the source's walls onto the destination's (file comment). Throws `parameter_error` for bad
 /// parameters or an empty map; a source without walls near the destination's gives the rigid
 /// transform alone (`WarpResult::paired_points` 0).
 ///
-/// `start` may say where the displacements start and where the source is broken (see WarpStart).
+/// `start` may say where the displacements start and where the source is broken (see WarpStart):
+/// a broken map's pieces are each warped on their own walls, and a point moves with its piece's
+/// warp (`WarpField::set_pieces`), so that no control cell astride a cut blurs it.
 inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& dest, const Similarity2& T_dest_source,
                            const WarpParams& params = {}, const WarpStart& start = {}) {
   params.validate();
@@ -184,67 +317,46 @@ inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& des
 
   WarpResult out;
   out.source_wall_points = points.size();
-  const std::array<Eigen::Vector2d, 2> extent = detail::control_extent(source, points, params);
-  const Eigen::Vector2d lo = extent[0], hi = extent[1];
-  const double h = params.control_spacing_m;
-  // A control grid of `spacing` over [lo, hi], its nodes displaced where the start says, and
-  // their pieces.
-  auto start_field = [&](double spacing, std::vector<int>& node_piece) {
-    WarpField field(T_dest_source, lo, spacing, static_cast<int>(std::ceil((hi.x() - lo.x()) / spacing)) + 1,
-                    static_cast<int>(std::ceil((hi.y() - lo.y()) / spacing)) + 1);
-    for (int j = 0; j < field.rows(); ++j) {
-      for (int i = 0; i < field.columns(); ++i) {
-        const Eigen::Vector2d x = field.node_position(i, j);
-        if (start.displacement) field.node_displacement(field.node(i, j)) = start.displacement(x);
-        if (start.piece) node_piece.push_back(start.piece(x));
-      }
-    }
-    return field;
+  auto start_of = [&](int piece) -> std::function<Eigen::Vector2d(const Eigen::Vector2d&)> {
+    if (!start.displacement) return {};
+    return [&start, piece](const Eigen::Vector2d& x) { return start.displacement(x, piece); };
   };
-  std::vector<int> node_piece;
-  out.field = start_field(h, node_piece);
-  if (points.empty() || lookup.empty()) return out;
-
-  // The gates [first, last) on `field`; returns the pairs of its last solve.
-  constexpr std::size_t min_pairs = 10;
-  auto run_gates = [&](WarpField& field, detail::WarpSystem& system, std::size_t first, std::size_t last, bool from_near_start) {
-    std::size_t paired = 0;
-    for (std::size_t g = first; g < last; ++g) {
-      for (int iteration = 0; iteration < params.iterations_per_gate; ++iteration) {
-        const auto pairs = detail::warp_pairs(field, points, sides, lookup, params.gates_m[g], params.keep_fraction);
-        if (pairs.size() < min_pairs) break;
-        if (!system.solve(field, pairs, points, lookup, params, from_near_start)) break;
-        paired = pairs.size();
-      }
-    }
-    return paired;
-  };
-  const std::size_t gates = params.gates_m.size();
-  // Two levels: the early gates on the coarse grid, then the last on the fine grid from there (a
-  // bilinear field is itself on the finer grid, so the fine warp starts exactly where the coarse
-  // one ended); the rest term still pulls towards the start, not the coarse warp. Not for a map
-  // broken into pieces: a coarse cell astride a cut blurs it, and the last gate alone does not
-  // undo that (generated broken maps: 3 of 60 fell over 0.15 m at the 95th percentile).
-  if (params.coarse_spacing_m > h && gates > 1 && !start.piece) {
-    std::vector<int> coarse_piece;
-    WarpField coarse = start_field(params.coarse_spacing_m, coarse_piece);
-    {
-      detail::WarpSystem coarse_system(coarse, params, coarse_piece);
-      run_gates(coarse, coarse_system, 0, gates - 1, false);
-    }
-    detail::WarpSystem system(out.field, params, node_piece);
-    for (int j = 0; j < out.field.rows(); ++j) {
-      for (int i = 0; i < out.field.columns(); ++i) {
-        out.field.node_displacement(out.field.node(i, j)) = coarse.displacement(out.field.node_position(i, j));
-      }
-    }
-    out.paired_points = run_gates(out.field, system, gates - 1, gates, true);
+  const int piece_count = start.pieces.count();
+  if (piece_count <= 1) {
+    auto [field, paired] = detail::fit_field(source, points, sides, lookup, T_dest_source, params, start_of(0));
+    out.field = std::move(field);
+    out.paired_points = paired;
   } else {
-    detail::WarpSystem system(out.field, params, node_piece);
-    out.paired_points = run_gates(out.field, system, 0, gates, false);
+    // One warp per piece on its own walls; the whole's own grid stays the rigid transform. Fitted
+    // twice: on the pieces' labels as given, then on those labels decided again by the warps
+    // where pieces meet.
+    auto fit_pieces = [&](const PieceLabels& labels) {
+      std::vector<std::vector<Eigen::Vector2d>> piece_points(static_cast<std::size_t>(piece_count)), piece_sides(piece_points.size());
+      for (std::size_t i = 0; i < points.size(); ++i) {
+        const auto k = static_cast<std::size_t>(labels.at(points[i]));
+        piece_points[k].push_back(points[i]);
+        piece_sides[k].push_back(sides[i]);
+      }
+      std::vector<WarpField> fields;
+      out.paired_points = 0;
+      for (int k = 0; k < piece_count; ++k) {
+        const auto u = static_cast<std::size_t>(k);
+        auto [field, paired] = detail::fit_field(source, piece_points[u], piece_sides[u], lookup, T_dest_source, params, start_of(k));
+        fields.push_back(std::move(field));
+        out.paired_points += paired;
+      }
+      return fields;
+    };
+    std::vector<WarpField> fields = fit_pieces(start.pieces);
+    PieceLabels labels = start.pieces;
+    if (!points.empty() && !lookup.empty()) {
+      labels = detail::relabel_pieces(start.pieces, fields, points, sides, lookup, params);
+      fields = fit_pieces(labels);
+    }
+    out.field = WarpField(T_dest_source);
+    out.field.set_pieces(std::move(labels), std::move(fields));
   }
-
-  detail::report_wall_fit(points, sides, lookup, T_dest_source, params, out);
+  if (!points.empty() && !lookup.empty()) detail::report_wall_fit(points, sides, lookup, T_dest_source, params, out);
   return out;
 }
 

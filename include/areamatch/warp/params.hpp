@@ -23,9 +23,9 @@ struct WarpParams {
   double bend_length_m = 4.0;
   /// The gates before the last are solved on a coarser control grid of this spacing (two levels:
   /// the coarse warp then starts the fine one on the last gate), so that the large early moves
-  /// cost a quarter of the unknowns and the fine grid needs no factorization; 0 (or not above
-  /// `control_spacing_m`): every gate on the fine grid, as always for a map broken into pieces
-  /// (`WarpStart::piece`). Measured in docs/warp.md.
+  /// cost a quarter of the unknowns and the fine grid needs no factorization (a map broken into
+  /// pieces, `WarpStart::pieces`: each piece's warp so); 0 (or not above `control_spacing_m`):
+  /// every gate on the fine grid. Measured in docs/warp.md.
   double coarse_spacing_m = 2.0;
   /// Wall pairing gates, one stage each, shrinking as the warp settles.
   std::vector<double> gates_m{2.0, 1.2, 0.8, 0.5, 0.3};
@@ -49,6 +49,12 @@ struct WarpParams {
   /// a `WarpStart` gives one), per m² of the grid: keeps nodes that no wall reaches where the
   /// start put them.
   double rest_weight = 1e-3;
+  /// A map broken into pieces (`WarpStart::pieces`): where they meet, which piece's warp moves a
+  /// point is decided again on cells of this side, by which piece's warp lays their walls best
+  /// (the pieces' labels come from tiles' rigid fits, coarser than a cut).
+  double piece_label_cell_m = 0.25;
+  /// ... for the cells this close to another piece's cells (how far the given labels may be off).
+  double piece_boundary_m = 1.5;
   /// The control grid reaches this far beyond the source's walls.
   double margin_m = 2.0;
   /// `WarpResult`'s wall figures count the source wall points whose destination wall lies within
@@ -77,6 +83,8 @@ struct WarpParams {
     detail::require_positive(free_side_radius_m, "WarpParams::free_side_radius_m");
     detail::require_non_negative(along_wall_weight, "WarpParams::along_wall_weight");
     detail::require_positive(rest_weight, "WarpParams::rest_weight");
+    detail::require_positive(piece_label_cell_m, "WarpParams::piece_label_cell_m");
+    detail::require_non_negative(piece_boundary_m, "WarpParams::piece_boundary_m");
     detail::require_non_negative(margin_m, "WarpParams::margin_m");
     detail::require_positive(report_within_m, "WarpParams::report_within_m");
   }

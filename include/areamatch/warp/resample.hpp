@@ -2,7 +2,8 @@
 /// \file warp/resample.hpp
 /// A source map drawn in a destination's frame through a warp: each destination cell takes the
 /// state of the source cell the warp brings there (nearest cell; unknown where the source has
-/// none), so the two maps can be laid over each other cell for cell.
+/// none, or where no source point goes: a gap between a broken map's pieces), so the two maps can
+/// be laid over each other cell for cell.
 
 #include "../area_graph.hpp"
 #include "../grid.hpp"
@@ -11,6 +12,7 @@
 #include <Eigen/Core>
 
 #include <cmath>
+#include <optional>
 
 namespace areamatch {
 
@@ -22,7 +24,9 @@ inline OccupancyGrid resample_through(const OccupancyGrid& source, const WarpFie
   const Eigen::Affine2d source_pixel = source.pixel_from_world();
   for (int row = 0; row < frame.height; ++row) {
     for (int col = 0; col < frame.width; ++col) {
-      const Eigen::Vector2d p = source_pixel * warp.inverse(dest_world * Eigen::Vector2d(col, row));
+      const std::optional<Eigen::Vector2d> from = warp.preimage(dest_world * Eigen::Vector2d(col, row));
+      if (!from) continue;
+      const Eigen::Vector2d p = source_pixel * *from;
       const int x = static_cast<int>(std::lround(p.x())), y = static_cast<int>(std::lround(p.y()));
       if (source.contains(x, y)) out.set(col, row, source.at(x, y));
     }

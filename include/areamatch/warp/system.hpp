@@ -23,16 +23,13 @@
 namespace areamatch {
 namespace detail {
 
-/// The bending and rest terms of the energy over `field`'s nodes (2 unknowns a node: x, y). With
-/// `node_piece` (one label per node), a bending stencil whose nodes carry different labels is left
-/// out: the field bends freely where a map is broken.
+/// The bending and rest terms of the energy over `field`'s nodes (2 unknowns a node: x, y).
 ///
 /// The terms couple a node with the 13 nodes within two steps along a row or column or one
 /// diagonally, and x with x, y with y only; they are summed per node and offset, then written
 /// column by column in row order (no triplets to sort: a large grid's matrix is built in a few
 /// milliseconds).
-inline Eigen::SparseMatrix<double> smoothness_matrix(const WarpField& field, const WarpParams& params,
-                                                     const std::vector<int>& node_piece = {}) {
+inline Eigen::SparseMatrix<double> smoothness_matrix(const WarpField& field, const WarpParams& params) {
   // The offsets (row step, column step) in the order of their node indices.
   static constexpr int kOffsets = 13;
   static constexpr int kRowStep[kOffsets] = {-2, -1, -1, -1, 0, 0, 0, 0, 0, 1, 1, 1, 2};
@@ -50,9 +47,6 @@ inline Eigen::SparseMatrix<double> smoothness_matrix(const WarpField& field, con
   const double bend = params.bending_weight() * h2 / (h2 * h2);  // κ · area per node · (1/h²)²
   // One stencil: its nodes as (column, row) and their coefficients.
   auto add = [&](const int (*nodes)[2], const double* coefficients, int count, double weight) {
-    for (int a = 1; a < count && !node_piece.empty(); ++a) {
-      if (node_piece[field.node(nodes[a][0], nodes[a][1])] != node_piece[field.node(nodes[0][0], nodes[0][1])]) return;
-    }
     for (int a = 0; a < count; ++a) {
       auto& row = sums[field.node(nodes[a][0], nodes[a][1])];
       for (int b = 0; b < count; ++b) {
@@ -147,9 +141,9 @@ class WarpSystem {
   /// The rest term pulls each node towards its displacement in `field` now (where the warp
   /// starts), not towards none: a piece that the start turned away from the rigid transform stays
   /// turned where no wall holds it (room middles), rather than bending back.
-  WarpSystem(const WarpField& field, const WarpParams& params, const std::vector<int>& node_piece = {})
+  WarpSystem(const WarpField& field, const WarpParams& params)
       : unknowns_(static_cast<Eigen::Index>(2 * field.node_count())), rest_pull_(unknowns_) {
-    smoothness_ = smoothness_matrix(field, params, node_piece);
+    smoothness_ = smoothness_matrix(field, params);
     const double rest = params.rest_weight * field.spacing() * field.spacing();
     for (std::size_t k = 0; k < field.node_count(); ++k) {
       rest_pull_.segment<2>(static_cast<Eigen::Index>(2 * k)) = rest * field.node_displacement(k);
