@@ -135,6 +135,26 @@ TEST_CASE("breaks that add up are not merged into one piece") {
   CHECK(widest > 10.0 * pi / 180.0);  // a piece beyond the first cut is found
 }
 
+TEST_CASE("a tile's fit that slid a wall period along does not start the warp") {
+  // In-sample regression pin: pair 5 of `areamatch_assess_generated 60 6300`, broken once under a
+  // 0.2 m bend. Both pieces' fits are right, but a few tiles of like rooms fitted 2-6 m along, and
+  // the warp, started from them, stayed there: its 95th percentile error was 4.0 m (the rigid
+  // answer's 3.9 m) until a tile's fit started the warp only near its piece's
+  // (AssessParams::piece_start_max_offset_m); 0.03 m since.
+  areamatch_test::DistortedCase pair = areamatch_test::distorted_case(6300, 5);
+  const AssessCase c = assess_case(std::move(pair.building), std::move(pair.robot));
+  REQUIRE(c.robot.breaks.size() == 1);
+  AssessParams params;
+  params.assume_same_building = true;
+  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
+  REQUIRE(a.ok);
+  REQUIRE(a.brokenness.pieces.size() == 2);
+  std::vector<double> errors;
+  for (const Eigen::Vector2d& p : detail::wall_points(c.robot.grid, 0.1)) errors.push_back((a.warp.field.apply(p) - c.robot.true_dest(p)).norm());
+  std::sort(errors.begin(), errors.end());
+  CHECK(errors[errors.size() * 95 / 100] < 0.15);
+}
+
 TEST_CASE("tiles whose fits scatter gather into their piece instead of joining the large one next door") {
   // In-sample regression pin: pair 15 of `areamatch_assess_generated 60 6300`, a map broken three
   // times under a 0.2 m bend. Its tiles' own fits scatter by a degree or so, so
@@ -230,4 +250,7 @@ TEST_CASE("bad assessment parameters are refused by name") {
   refused([](AssessParams& p) { p.sample_cell_m = std::nan(""); }, "sample_cell_m");
   refused([](AssessParams& p) { p.warp.bend_length_m = 0.0; }, "bend_length_m");
   refused([](AssessParams& p) { p.piece_retry_turns_rad = {0.1, std::nan("")}; }, "piece_retry_turns_rad");
+  refused([](AssessParams& p) { p.piece_start_max_offset_m = -1.0; }, "piece_start_max_offset_m");
+  refused([](AssessParams& p) { p.warp.piece_label_cell_m = 0.0; }, "piece_label_cell_m");
+  refused([](AssessParams& p) { p.warp.piece_boundary_m = -0.5; }, "piece_boundary_m");
 }

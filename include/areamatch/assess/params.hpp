@@ -80,6 +80,12 @@ struct AssessParams {
   /// little from one tile to the next; a failed loop closure turns everything beyond it at once.
   /// Loose, because a tile across a corridor may slide along it.
   double piece_shift_tolerance_m = 0.5;
+  /// A tile's own fit starts the warp (assess/report.hpp) only where it places the tile's middle
+  /// within this of where its piece's fit does; farther, the tile slid a wall period along a row
+  /// of like rooms (its walls lie on walls all the same), which its piece's fit, made on all the
+  /// piece's walls, does not, and a warp started there stays there. Nearer, the difference is
+  /// the bend across the piece, which the tile's fit takes out before the warp starts.
+  double piece_start_max_offset_m = 1.0;
   /// A piece with fewer wall points than this is joined to its neighbour: a tile or two whose
   /// walls are mostly furniture are no evidence of a broken map.
   std::size_t piece_min_points = 600;
@@ -109,6 +115,7 @@ struct AssessParams {
     if (piece_min_wall_points < 3) throw parameter_error("AssessParams::piece_min_wall_points must be >= 3");
     detail::require_positive(piece_max_rotation_rad, "AssessParams::piece_max_rotation_rad");
     detail::require_positive(piece_max_shift_m, "AssessParams::piece_max_shift_m");
+    detail::require_non_negative(piece_start_max_offset_m, "AssessParams::piece_start_max_offset_m");
     for (const double turn : piece_retry_turns_rad) {
       if (!std::isfinite(turn)) throw parameter_error("AssessParams::piece_retry_turns_rad must be finite");
     }

@@ -69,7 +69,8 @@ struct Brokenness {
   double tile_m = 1.0;
   int tile_columns = 0, tile_rows = 0;
   std::vector<int> piece_of_tile;
-  /// Per tile: its own rigid fit where it had one that counts, else its piece's.
+  /// Per tile: its own rigid fit where it had one that counts and it lies within
+  /// `AssessParams::piece_start_max_offset_m` of its piece's fit at the tile's middle, else its piece's.
   std::vector<Similarity2> tile_fit;
   /// The tile a map point falls in (the nearest tile beyond them), row-major.
   std::size_t tile_at(const Eigen::Vector2d& map_point) const {
@@ -287,7 +288,10 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
   out.tile_fit.resize(n);
   for (std::size_t t = 0; t < n; ++t) {
     out.piece_of_tile[t] = index_of_root[static_cast<std::size_t>(piece_of_tile[t])];
-    out.tile_fit[t] = fitted[t] ? fit[t] : out.pieces[static_cast<std::size_t>(out.piece_of_tile[t])].T_reference_map;
+    const Similarity2& piece_fit_here = out.pieces[static_cast<std::size_t>(out.piece_of_tile[t])].T_reference_map;
+    const Eigen::Vector2d middle = tiles.centre(t);
+    const bool near_piece = (fit[t] * middle - piece_fit_here * middle).norm() <= params.piece_start_max_offset_m;
+    out.tile_fit[t] = fitted[t] && near_piece ? fit[t] : piece_fit_here;
   }
   if (out.pieces.size() > 1) out.piece_cells = detail::piece_cells(out, tiles.walls, reference, params);
   return out;
