@@ -39,6 +39,25 @@ AssessCase assess_case(std::uint64_t seed, const RobotMapParams& rp) {
   return assess_case(std::move(building), std::move(robot));
 }
 
+/// Pair `index` of `areamatch_assess_generated 60 FIRST_SEED` (tools/assess_generated.cpp): its case,
+/// assessed as the layout's building (a broken map may be rejected).
+std::pair<AssessCase, MapAssessment> assess_distorted(std::uint64_t first_seed, int index) {
+  areamatch_test::DistortedCase pair = areamatch_test::distorted_case(first_seed, index);
+  AssessCase c = assess_case(std::move(pair.building), std::move(pair.robot));
+  AssessParams params;
+  params.assume_same_building = true;
+  MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
+  return {std::move(c), std::move(a)};
+}
+
+/// The 95th percentile of the warp's error at the map's wall points, against the generator's truth.
+double warp_error_p95(const AssessCase& c, const MapAssessment& a) {
+  std::vector<double> errors;
+  for (const Eigen::Vector2d& p : detail::wall_points(c.robot.grid, 0.1)) errors.push_back((a.warp.field.apply(p) - c.robot.true_dest(p)).norm());
+  std::sort(errors.begin(), errors.end());
+  return errors.empty() ? 0.0 : errors[errors.size() * 95 / 100];
+}
+
 RobotMapParams plain_robot(double rotation_rad) {
   RobotMapParams rp;
   rp.rotation_rad = rotation_rad;
@@ -105,10 +124,7 @@ TEST_CASE("a broken generated map: the broken piece is found with its turn") {
     // Each piece has its own warp, so the walls beside the cut land where they belong too (one
     // smooth field blended the two sides over a control cell there).
     REQUIRE(a.warp.field.piece_fields().size() == 2);
-    std::vector<double> errors;
-    for (const Eigen::Vector2d& p : detail::wall_points(c.robot.grid, 0.1)) errors.push_back((a.warp.field.apply(p) - c.robot.true_dest(p)).norm());
-    std::sort(errors.begin(), errors.end());
-    const double p95 = errors[errors.size() * 95 / 100];
+    const double p95 = warp_error_p95(c, a);
     MESSAGE("warp error at the walls, 95th percentile: " << p95 << " m");
     CHECK(p95 < 0.15);
   }
@@ -141,18 +157,11 @@ TEST_CASE("a tile's fit that slid a wall period along does not start the warp") 
   // the warp, started from them, stayed there: its 95th percentile error was 4.0 m (the rigid
   // answer's 3.9 m) until a tile's fit started the warp only near its piece's
   // (AssessParams::piece_start_max_offset_m); 0.03 m since.
-  areamatch_test::DistortedCase pair = areamatch_test::distorted_case(6300, 5);
-  const AssessCase c = assess_case(std::move(pair.building), std::move(pair.robot));
+  const auto [c, a] = assess_distorted(6300, 5);
   REQUIRE(c.robot.breaks.size() == 1);
-  AssessParams params;
-  params.assume_same_building = true;
-  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
   REQUIRE(a.ok);
   REQUIRE(a.brokenness.pieces.size() == 2);
-  std::vector<double> errors;
-  for (const Eigen::Vector2d& p : detail::wall_points(c.robot.grid, 0.1)) errors.push_back((a.warp.field.apply(p) - c.robot.true_dest(p)).norm());
-  std::sort(errors.begin(), errors.end());
-  CHECK(errors[errors.size() * 95 / 100] < 0.15);
+  CHECK(warp_error_p95(c, a) < 0.15);
 }
 
 TEST_CASE("tiles whose fits scatter gather into their piece instead of joining the large one next door") {
@@ -160,12 +169,8 @@ TEST_CASE("tiles whose fits scatter gather into their piece instead of joining t
   // times under a 0.2 m bend. Its tiles' own fits scatter by a degree or so, so
   // one piece's tiles formed groups too small to count, and each joined the large piece next door:
   // 3 pieces found before 2026-12-07, the true 4 since small groups gather first.
-  areamatch_test::DistortedCase pair = areamatch_test::distorted_case(6300, 15);
-  const AssessCase c = assess_case(std::move(pair.building), std::move(pair.robot));
+  const auto [c, a] = assess_distorted(6300, 15);
   REQUIRE(c.robot.breaks.size() == 3);
-  AssessParams params;
-  params.assume_same_building = true;
-  const MapAssessment a = assess_match(c.robot.grid, c.map_graph, c.building.layout, c.reference_graph, c.match, params);
   REQUIRE(a.ok);
   CHECK(a.brokenness.pieces.size() == 4);
 }
