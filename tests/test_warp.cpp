@@ -190,6 +190,7 @@ TEST_CASE("a broken map's warp: each point moves with its piece's field, and a g
   CHECK(labels.at(Eigen::Vector2d(0.1, 3.0)) == 1);
   CHECK(labels.at(Eigen::Vector2d(50.0, 50.0)) == 1);  // beyond the raster: the nearest cell's
   WarpField field(rigid);
+  CHECK_THROWS_AS(field.set_pieces(labels, {left}), parameter_error);  // a label without its field
   field.set_pieces(labels, {left, right});
   CHECK_FALSE(field.is_rigid());
   const Eigen::Vector2d a(-0.2, 1.0), b(0.2, 1.0);

@@ -7,6 +7,7 @@
 /// smearing it over a control cell. Fitted by `fit_warp` (warp/fit.hpp); applied to points here,
 /// forwards and backwards.
 
+#include "../error.hpp"
 #include "../transform.hpp"
 
 #include <Eigen/Core>
@@ -92,8 +93,16 @@ class WarpField {
 
   /// Makes this a broken map's warp: the displacement at a point is that of `fields[k]`, k its
   /// piece in `labels` (each field with this one's rigid part); this field's own nodes are then
-  /// not read. `fields` must hold one field per label.
+  /// not read. Throws `parameter_error` unless `fields` holds a field for every label and the
+  /// raster's size matches its labels.
   void set_pieces(PieceLabels labels, std::vector<WarpField> fields) {
+    const bool sized = labels.columns > 0 && labels.rows > 0 && labels.cell_m > 0.0 &&
+                       labels.labels.size() == static_cast<std::size_t>(labels.columns) * static_cast<std::size_t>(labels.rows);
+    const bool labelled = std::all_of(labels.labels.begin(), labels.labels.end(),
+                                      [&](int k) { return k >= 0 && static_cast<std::size_t>(k) < fields.size(); });
+    if (!labels.empty() && !(sized && labelled)) {
+      throw parameter_error("WarpField::set_pieces: the piece labels must fill their raster and each name one of the fields");
+    }
     piece_labels_ = std::move(labels);
     piece_fields_ = std::move(fields);
   }
