@@ -84,11 +84,13 @@ struct Brokenness {
   /// around it best. Empty for a map in one piece.
   std::vector<int> piece_cells;
   double piece_cell_m = 0.5;
+  /// `piece_cells` along a tile's side.
+  int cells_per_tile() const { return static_cast<int>(std::lround(tile_m / piece_cell_m)); }
   /// The piece a map point belongs to.
   int piece_at(const Eigen::Vector2d& map_point) const {
     if (piece_of_tile.empty()) return 0;
     if (piece_cells.empty()) return piece_of_tile[tile_at(map_point)];
-    const int per_tile = static_cast<int>(std::lround(tile_m / piece_cell_m));
+    const int per_tile = cells_per_tile();
     const Eigen::Vector2d u = (map_point - tile_origin) / piece_cell_m;
     const int c = std::clamp(static_cast<int>(std::floor(u.x())), 0, tile_columns * per_tile - 1);
     const int r = std::clamp(static_cast<int>(std::floor(u.y())), 0, tile_rows * per_tile - 1);
@@ -114,7 +116,7 @@ struct Brokenness {
       out.rows = tile_rows;
       out.labels = piece_of_tile;
     } else {
-      const int per_tile = static_cast<int>(std::lround(tile_m / piece_cell_m));
+      const int per_tile = cells_per_tile();
       out.cell_m = piece_cell_m;
       out.columns = tile_columns * per_tile;
       out.rows = tile_rows * per_tile;

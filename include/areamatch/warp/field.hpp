@@ -33,14 +33,15 @@ struct PieceLabels {
 
   bool empty() const { return labels.empty(); }
   int count() const { return labels.empty() ? 1 : *std::max_element(labels.begin(), labels.end()) + 1; }
-  /// The piece at a source point.
-  int at(const Eigen::Vector2d& source_world) const {
-    if (labels.empty()) return 0;
+  /// The cell a source point falls in (the nearest cell beyond the raster), row-major.
+  std::size_t cell_of(const Eigen::Vector2d& source_world) const {
     const Eigen::Vector2d u = (source_world - origin) / cell_m;
     const int c = std::clamp(static_cast<int>(std::floor(u.x())), 0, columns - 1);
     const int r = std::clamp(static_cast<int>(std::floor(u.y())), 0, rows - 1);
-    return labels[static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(c)];
+    return static_cast<std::size_t>(r) * static_cast<std::size_t>(columns) + static_cast<std::size_t>(c);
   }
+  /// The piece at a source point.
+  int at(const Eigen::Vector2d& source_world) const { return labels.empty() ? 0 : labels[cell_of(source_world)]; }
 };
 
 class WarpField {

@@ -256,12 +256,7 @@ inline PieceLabels relabel_pieces(const PieceLabels& labels, const std::vector<W
   }
   // The wall points of each cell, in the points' order.
   std::vector<std::vector<std::size_t>> in_cell(out.labels.size());
-  for (std::size_t i = 0; i < points.size(); ++i) {
-    const Eigen::Vector2d u = (points[i] - out.origin) / out.cell_m;
-    const int c = std::clamp(static_cast<int>(std::floor(u.x())), 0, out.columns - 1);
-    const int r = std::clamp(static_cast<int>(std::floor(u.y())), 0, out.rows - 1);
-    in_cell[static_cast<std::size_t>(r) * columns + static_cast<std::size_t>(c)].push_back(i);
-  }
+  for (std::size_t i = 0; i < points.size(); ++i) in_cell[out.cell_of(points[i])].push_back(i);
   const int reach = static_cast<int>(std::ceil(params.piece_boundary_m / out.cell_m));
   const double cap = params.gates_m.back();
   const std::vector<int> before = out.labels;
