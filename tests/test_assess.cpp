@@ -164,6 +164,20 @@ TEST_CASE("a tile's fit that slid a wall period along does not start the warp") 
   CHECK(warp_error_p95(c, a) < 0.15);
 }
 
+TEST_CASE("a bent broken piece's turn is the rigid fit of its warped walls") {
+  // In-sample regression pin: pair 25 of `areamatch_assess_generated 60 4300`, broken once under a
+  // 0.2 m bend. The tiles' ICP fits lean to the walls they agree with best: the piece's turn was
+  // 0.76 degrees off its break's before each piece's fit became the least-squares fit of its
+  // warped walls (fit_pieces_to_warp, 2026-12-07); 0.24 since.
+  const auto [c, a] = assess_distorted(4300, 25);
+  REQUIRE(c.robot.breaks.size() == 1);
+  REQUIRE(a.ok);
+  REQUIRE(a.brokenness.pieces.size() == 2);
+  const double error = std::abs(std::abs(a.brokenness.pieces[1].rotation_rad) - std::abs(c.robot.breaks.front().motion.rotation));
+  MESSAGE("turn error: " << error * 180.0 / pi << " degrees");
+  CHECK(error < 0.5 * pi / 180.0);
+}
+
 TEST_CASE("tiles whose fits scatter gather into their piece instead of joining the large one next door") {
   // In-sample regression pin: pair 15 of `areamatch_assess_generated 60 6300`, a map broken three
   // times under a 0.2 m bend. Its tiles' own fits scatter by a degree or so, so
@@ -256,6 +270,7 @@ TEST_CASE("bad assessment parameters are refused by name") {
   refused([](AssessParams& p) { p.warp.bend_length_m = 0.0; }, "bend_length_m");
   refused([](AssessParams& p) { p.piece_retry_turns_rad = {0.1, std::nan("")}; }, "piece_retry_turns_rad");
   refused([](AssessParams& p) { p.piece_start_max_offset_m = -1.0; }, "piece_start_max_offset_m");
+  refused([](AssessParams& p) { p.piece_refit_rounds = -1; }, "piece_refit_rounds");
   refused([](AssessParams& p) { p.warp.piece_label_cell_m = 0.0; }, "piece_label_cell_m");
   refused([](AssessParams& p) { p.warp.piece_boundary_m = -0.5; }, "piece_boundary_m");
 }

@@ -49,6 +49,10 @@ struct AssessParams {
     p.same_side_only = true;  // a room's face of a wall, never the next room's
     return p;
   }();
+  /// After the warp, each piece's transform is the rigid fit of its walls' warped places, and
+  /// the walls are dealt again this many times to the piece whose fit lays them nearest
+  /// (`fit_pieces_to_warp`): 0 keeps the labels the pieces were found with.
+  int piece_refit_rounds = 2;
   /// The walls are fitted in square tiles of this side: a few rooms' worth, smaller than a long
   /// corridor (which a bent map's corridor no longer is rigidly).
   double piece_tile_m = 6.0;
@@ -112,6 +116,7 @@ struct AssessParams {
     detail::require_non_negative(explored_reach_m, "AssessParams::explored_reach_m");
     piece_icp.validate();
     detail::require_positive(piece_tile_m, "AssessParams::piece_tile_m");
+    detail::require_non_negative(piece_refit_rounds, "AssessParams::piece_refit_rounds");
     if (piece_min_wall_points < 3) throw parameter_error("AssessParams::piece_min_wall_points must be >= 3");
     detail::require_positive(piece_max_rotation_rad, "AssessParams::piece_max_rotation_rad");
     detail::require_positive(piece_max_shift_m, "AssessParams::piece_max_shift_m");

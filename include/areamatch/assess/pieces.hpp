@@ -299,4 +299,64 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
   return out;
 }
 
+/// Each piece's transform made the least-squares rigid fit of where `warp` takes its wall points
+/// (`map_walls`, map world): the rigid motion that best describes the piece as warped. The tiles'
+/// ICP fits that found the pieces weigh the walls they agree with best, so a bent piece's fit
+/// leans to its best-fitting part and its turn is off by up to a degree or two; the warp has every
+/// wall in place, bend and all. Which piece a wall point is fitted with starts from
+/// `Brokenness::piece_at` and then goes to the piece whose fit lays it nearest its warped place,
+/// `piece_refit_rounds` times: next to a cut the warp of one piece bends to follow the walls of its
+/// neighbour that its labels gave it, and those walls would turn its rigid fit (a few per cent of
+/// a piece's walls turn it by a degree). Turns, shifts and wall agreements (against `reference`)
+/// follow the new fits. A piece with fewer than three points keeps its fit.
+inline void fit_pieces_to_warp(Brokenness& b, const std::vector<Eigen::Vector2d>& map_walls, const WarpField& warp,
+                               const BoundaryLookup& reference, const AssessParams& params) {
+  if (b.pieces.empty()) return;
+  const std::size_t n = map_walls.size(), n_pieces = b.pieces.size();
+  std::vector<Eigen::Vector2d> warped(n);
+  std::vector<std::size_t> label(n);
+  for (std::size_t i = 0; i < n; ++i) {
+    warped[i] = warp.apply(map_walls[i]);
+    label[i] = static_cast<std::size_t>(b.piece_at(map_walls[i]));
+  }
+  RefineParams rigid;  // the Procrustes step without scale
+  rigid.estimate_scale = false;
+  std::vector<detail::IcpMatch> matches;
+  std::vector<std::vector<Eigen::Vector2d>> own(n_pieces);
+  for (int round = 0; round <= params.piece_refit_rounds; ++round) {
+    for (std::size_t k = 0; k < n_pieces; ++k) {
+      Similarity2& T = b.pieces[k].T_reference_map;
+      const Similarity2 shape{0.0, Eigen::Vector2d::Zero(), T.scale, T.reflected};
+      Similarity2 unused = shape;
+      matches.clear();
+      own[k].clear();
+      for (std::size_t i = 0; i < n; ++i) {
+        if (label[i] != k) continue;
+        matches.push_back({0.0, shape * map_walls[i], &warped[i]});
+        own[k].push_back(map_walls[i]);
+      }
+      if (matches.size() >= 3) detail::procrustes_step(matches, rigid, unused, T);
+    }
+    if (round == params.piece_refit_rounds || n_pieces == 1) break;
+    for (std::size_t i = 0; i < n; ++i) {
+      double nearest = (b.pieces[label[i]].T_reference_map * map_walls[i] - warped[i]).squaredNorm();
+      for (std::size_t k = 0; k < n_pieces; ++k) {
+        const double d = (b.pieces[k].T_reference_map * map_walls[i] - warped[i]).squaredNorm();
+        if (d < nearest) nearest = d, label[i] = k;
+      }
+    }
+  }
+  for (std::size_t k = 0; k < n_pieces; ++k) {
+    RigidPiece& piece = b.pieces[k];
+    if (!own[k].empty()) {
+      piece.wall_agreement = static_cast<double>(reference.count_within(own[k], piece.T_reference_map, params.wall_tolerance_m)) /
+                             static_cast<double>(own[k].size());
+    }
+    if (k == 0) continue;
+    const Similarity2& main = b.pieces.front().T_reference_map;
+    piece.rotation_rad = wrap_angle(piece.T_reference_map.rotation - main.rotation);
+    piece.shift_m = (piece.T_reference_map * piece.centroid - main * piece.centroid).norm();
+  }
+}
+
 }  // namespace areamatch

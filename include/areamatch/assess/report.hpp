@@ -127,6 +127,7 @@ inline MapAssessment assess_match(const OccupancyGrid& map, const AreaGraph& map
   out.timings.warp_s = detail::seconds_between(pieces_found, warped);
 
   const WallSets walls(map, reference, params);
+  fit_pieces_to_warp(out.brokenness, walls.map_points, out.warp.field, reference_lookup, params);
   const Similarity2 back = T.inverse();
   const WarpField& field = out.warp.field;
   out.rigid_walls = wall_errors(
