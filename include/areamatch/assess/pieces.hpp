@@ -319,23 +319,13 @@ inline void fit_pieces_to_warp(Brokenness& b, const std::vector<Eigen::Vector2d>
     warped[i] = warp.apply(map_walls[i]);
     label[i] = static_cast<std::size_t>(b.piece_at(map_walls[i]));
   }
-  RefineParams rigid;  // the Procrustes step without scale
-  rigid.estimate_scale = false;
-  std::vector<detail::IcpMatch> matches;
-  std::vector<std::vector<Eigen::Vector2d>> own(n_pieces);
+  std::vector<std::vector<Eigen::Vector2d>> from(n_pieces), to(n_pieces);
   for (int round = 0; round <= params.piece_refit_rounds; ++round) {
+    for (std::size_t k = 0; k < n_pieces; ++k) from[k].clear(), to[k].clear();
+    for (std::size_t i = 0; i < n; ++i) from[label[i]].push_back(map_walls[i]), to[label[i]].push_back(warped[i]);
     for (std::size_t k = 0; k < n_pieces; ++k) {
       Similarity2& T = b.pieces[k].T_reference_map;
-      const Similarity2 shape{0.0, Eigen::Vector2d::Zero(), T.scale, T.reflected};
-      Similarity2 unused = shape;
-      matches.clear();
-      own[k].clear();
-      for (std::size_t i = 0; i < n; ++i) {
-        if (label[i] != k) continue;
-        matches.push_back({0.0, shape * map_walls[i], &warped[i]});
-        own[k].push_back(map_walls[i]);
-      }
-      if (matches.size() >= 3) detail::procrustes_step(matches, rigid, unused, T);
+      if (from[k].size() >= 3) T = detail::least_squares_rigid(from[k], to[k], T);
     }
     if (round == params.piece_refit_rounds || n_pieces == 1) break;
     for (std::size_t i = 0; i < n; ++i) {
@@ -348,9 +338,9 @@ inline void fit_pieces_to_warp(Brokenness& b, const std::vector<Eigen::Vector2d>
   }
   for (std::size_t k = 0; k < n_pieces; ++k) {
     RigidPiece& piece = b.pieces[k];
-    if (!own[k].empty()) {
-      piece.wall_agreement = static_cast<double>(reference.count_within(own[k], piece.T_reference_map, params.wall_tolerance_m)) /
-                             static_cast<double>(own[k].size());
+    if (!from[k].empty()) {
+      piece.wall_agreement = static_cast<double>(reference.count_within(from[k], piece.T_reference_map, params.wall_tolerance_m)) /
+                             static_cast<double>(from[k].size());
     }
     if (k == 0) continue;
     const Similarity2& main = b.pieces.front().T_reference_map;

@@ -176,6 +176,23 @@ inline bool procrustes_step(const std::vector<IcpMatch>& matches, const RefinePa
          (T.translation - previous.translation).norm() < params.converged_m && std::abs(k - 1.0) < params.converged_scale;
 }
 
+/// The least-squares rigid motion taking `from[i]` onto `to[i]` (2D Procrustes), keeping `shape`'s
+/// scale and reflection (its rotation and translation are ignored). `shape` itself (with zero
+/// rotation and translation) for fewer than three pairs.
+inline Similarity2 least_squares_rigid(const std::vector<Eigen::Vector2d>& from, const std::vector<Eigen::Vector2d>& to,
+                                       const Similarity2& shape) {
+  Similarity2 kept{0.0, Eigen::Vector2d::Zero(), shape.scale, shape.reflected};
+  Similarity2 T = kept;
+  if (from.size() < 3 || to.size() != from.size()) return T;
+  std::vector<IcpMatch> matches;
+  matches.reserve(from.size());
+  for (std::size_t i = 0; i < from.size(); ++i) matches.push_back({0.0, kept * from[i], &to[i]});
+  RefineParams rigid;
+  rigid.estimate_scale = false;
+  procrustes_step(matches, rigid, kept, T);
+  return T;
+}
+
 }  // namespace detail
 
 /// Trimmed ICP from `initial`: the rigid transform (reflection and scale kept; the scale fitted
