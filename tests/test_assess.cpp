@@ -178,6 +178,29 @@ TEST_CASE("a bent broken piece's turn is the rigid fit of its warped walls") {
   CHECK(error < 0.5 * pi / 180.0);
 }
 
+TEST_CASE("a piece is fitted from each of its tiles' own fits, not its first tile's alone") {
+  // In-sample regression pin: pair 38 of `areamatch_assess_generated 60 4300`, broken twice under a
+  // 0.8 m bend. One piece's fit, started from its first tile's, converged 1.5 degrees off and slid
+  // along the corridor; the warp followed it, 3.3 m off at the 95th percentile, until a piece's fit
+  // tried each of its tiles' fits as a start (detail::fit_tile_group, 2026-12-07); 0.034 m since.
+  const auto [c, a] = assess_distorted(4300, 38);
+  REQUIRE(c.robot.breaks.size() == 2);
+  REQUIRE(a.ok);
+  CHECK(a.brokenness.pieces.size() == 3);
+  CHECK(warp_error_p95(c, a) < 0.15);
+}
+
+TEST_CASE("pieces whose warped fits agree where they meet are one piece") {
+  // In-sample regression pin: pair 13 of `areamatch_assess_generated 60 4300`, broken once under a
+  // 0.8 m bend. The bend split one side of the break into two pieces whose tile fits disagreed; fitted
+  // on their warped walls they agree at their border, and are joined since 2026-12-07
+  // (detail::join_agreeing_pieces): 2 pieces, not 3.
+  const auto [c, a] = assess_distorted(4300, 13);
+  REQUIRE(c.robot.breaks.size() == 1);
+  REQUIRE(a.ok);
+  CHECK(a.brokenness.pieces.size() == 2);
+}
+
 TEST_CASE("tiles whose fits scatter gather into their piece instead of joining the large one next door") {
   // In-sample regression pin: pair 15 of `areamatch_assess_generated 60 6300`, a map broken three
   // times under a 0.2 m bend. Its tiles' own fits scatter by a degree or so, so

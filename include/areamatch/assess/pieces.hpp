@@ -207,6 +207,90 @@ inline void number_pieces(std::vector<std::pair<RigidPiece, std::size_t>>& found
   }
 }
 
+/// Neighbouring pieces whose fits agree at the middle of their common border (`fits_agree`) joined
+/// into one, the pieces renumbered (the largest first) and every index into them with them. `from`
+/// and `to` are per piece its wall points and their warped places; a joined piece is fitted on
+/// theirs together, and they are regrouped to the new numbers.
+inline void join_agreeing_pieces(Brokenness& b, std::vector<std::vector<Eigen::Vector2d>>& from,
+                                 std::vector<std::vector<Eigen::Vector2d>>& to, const AssessParams& params) {
+  const std::size_t n = b.pieces.size();
+  const PieceLabels labels = b.labels();
+  if (labels.empty()) return;
+  // Per pair of pieces that touch: the sum and count of the middles of the cell sides between them.
+  std::vector<Eigen::Vector2d> border_sum(n * n, Eigen::Vector2d::Zero());
+  std::vector<std::size_t> border_count(n * n, 0);
+  const auto columns = static_cast<std::size_t>(labels.columns);
+  for (int r = 0; r < labels.rows; ++r) {
+    for (int c = 0; c < labels.columns; ++c) {
+      const int here = labels.labels[static_cast<std::size_t>(r) * columns + static_cast<std::size_t>(c)];
+      const Eigen::Vector2d centre = labels.origin + labels.cell_m * Eigen::Vector2d(c + 0.5, r + 0.5);
+      for (const auto& [dc, dr] : {std::pair<int, int>{1, 0}, std::pair<int, int>{0, 1}}) {
+        if (c + dc >= labels.columns || r + dr >= labels.rows) continue;
+        const int there = labels.labels[static_cast<std::size_t>(r + dr) * columns + static_cast<std::size_t>(c + dc)];
+        if (there == here) continue;
+        const std::size_t lo = static_cast<std::size_t>(std::min(here, there)), hi = static_cast<std::size_t>(std::max(here, there));
+        border_sum[lo * n + hi] += centre + 0.5 * labels.cell_m * Eigen::Vector2d(dc, dr);
+        ++border_count[lo * n + hi];
+      }
+    }
+  }
+  DisjointSets sets(n);
+  bool joined = false;
+  for (std::size_t a = 0; a < n; ++a) {
+    for (std::size_t c = a + 1; c < n; ++c) {
+      const std::size_t count = border_count[a * n + c];
+      if (count == 0) continue;
+      const Eigen::Vector2d middle = border_sum[a * n + c] / static_cast<double>(count);
+      if (fits_agree(b.pieces[a].T_reference_map, b.pieces[c].T_reference_map, middle, params)) joined |= sets.join(a, c);
+    }
+  }
+  if (!joined) return;
+  // The joined pieces, in the order of their first member; then the largest first.
+  std::vector<std::size_t> group_of(n), firsts;
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t root = sets.find(k);
+    if (root == k) firsts.push_back(k);
+  }
+  std::vector<RigidPiece> grouped(firsts.size());
+  std::vector<std::vector<Eigen::Vector2d>> group_from(firsts.size()), group_to(firsts.size());
+  for (std::size_t g = 0; g < firsts.size(); ++g) {
+    for (std::size_t k = 0; k < n; ++k) {
+      if (sets.find(k) != firsts[g]) continue;
+      group_of[k] = g;
+      const RigidPiece& piece = b.pieces[k];
+      RigidPiece& into = grouped[g];
+      into.areas.insert(into.areas.end(), piece.areas.begin(), piece.areas.end());
+      into.centroid += piece.size_m2 * piece.centroid;
+      into.size_m2 += piece.size_m2;
+      group_from[g].insert(group_from[g].end(), from[k].begin(), from[k].end());
+      group_to[g].insert(group_to[g].end(), to[k].begin(), to[k].end());
+    }
+    RigidPiece& piece = grouped[g];
+    std::sort(piece.areas.begin(), piece.areas.end());
+    if (piece.size_m2 > 0.0) piece.centroid /= piece.size_m2;
+    piece.T_reference_map = b.pieces[firsts[g]].T_reference_map;
+    if (group_from[g].size() >= 3) piece.T_reference_map = least_squares_rigid(group_from[g], group_to[g], piece.T_reference_map);
+  }
+  std::vector<std::size_t> order(firsts.size());
+  std::iota(order.begin(), order.end(), std::size_t{0});
+  std::stable_sort(order.begin(), order.end(), [&](std::size_t x, std::size_t y) { return grouped[x].size_m2 > grouped[y].size_m2; });
+  std::vector<int> number_of_group(firsts.size());
+  for (std::size_t i = 0; i < order.size(); ++i) number_of_group[order[i]] = static_cast<int>(i);
+  b.pieces.clear();
+  from.clear();
+  to.clear();
+  for (const std::size_t g : order) {
+    b.pieces.push_back(std::move(grouped[g]));
+    from.push_back(std::move(group_from[g]));
+    to.push_back(std::move(group_to[g]));
+  }
+  auto renumber = [&](int& piece) { piece = number_of_group[group_of[static_cast<std::size_t>(piece)]]; };
+  for (int& piece : b.piece_of_area) renumber(piece);
+  for (int& piece : b.piece_of_tile) renumber(piece);
+  for (int& piece : b.piece_cells) renumber(piece);
+  if (b.pieces.size() <= 1) b.piece_cells.clear();
+}
+
 }  // namespace detail
 
 /// The rigid pieces of `map` (segmented into `graph`) against the reference walls `reference`
@@ -230,7 +314,7 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
   for (std::size_t t = 0; t < n; ++t) members[static_cast<std::size_t>(root[t])].push_back(t);
   std::vector<Similarity2> piece_fit(n, T);
   for (std::size_t r = 0; r < n; ++r) {
-    if (!members[r].empty()) piece_fit[r] = detail::fit_tile_group(tiles, members[r], fit[r], reference, T, params);
+    if (!members[r].empty()) piece_fit[r] = detail::fit_tile_group(tiles, members[r], fit[r], fit, fitted, reference, T, params);
   }
   detail::DisjointSets pieces(n);
   for (std::size_t t = 0; t < n; ++t) {
@@ -262,7 +346,7 @@ inline Brokenness find_pieces(const OccupancyGrid& map, const AreaGraph& graph, 
     if (piece.size_m2 > 0.0) piece.centroid /= piece.size_m2;
     piece.T_reference_map = members[r].size() == tiles_of[r].size()
                                 ? piece_fit[r]
-                                : detail::fit_tile_group(tiles, tiles_of[r], piece_fit[r], reference, T, params);
+                                : detail::fit_tile_group(tiles, tiles_of[r], piece_fit[r], fit, fitted, reference, T, params);
     std::size_t on = 0, all = 0;
     for (const std::size_t t : tiles_of[r]) {
       on += reference.count_within(tiles.walls[t], piece.T_reference_map, params.wall_tolerance_m);
@@ -336,16 +420,16 @@ inline void fit_pieces_to_warp(Brokenness& b, const std::vector<Eigen::Vector2d>
       }
     }
   }
-  for (std::size_t k = 0; k < n_pieces; ++k) {
+  if (n_pieces > 1) detail::join_agreeing_pieces(b, from, to, params);
+  const Similarity2 main = b.pieces.front().T_reference_map;
+  for (std::size_t k = 0; k < b.pieces.size(); ++k) {
     RigidPiece& piece = b.pieces[k];
-    if (!from[k].empty()) {
+    if (k < from.size() && !from[k].empty()) {
       piece.wall_agreement = static_cast<double>(reference.count_within(from[k], piece.T_reference_map, params.wall_tolerance_m)) /
                              static_cast<double>(from[k].size());
     }
-    if (k == 0) continue;
-    const Similarity2& main = b.pieces.front().T_reference_map;
-    piece.rotation_rad = wrap_angle(piece.T_reference_map.rotation - main.rotation);
-    piece.shift_m = (piece.T_reference_map * piece.centroid - main * piece.centroid).norm();
+    piece.rotation_rad = k == 0 ? 0.0 : wrap_angle(piece.T_reference_map.rotation - main.rotation);
+    piece.shift_m = k == 0 ? 0.0 : (piece.T_reference_map * piece.centroid - main * piece.centroid).norm();
   }
 }
 

@@ -237,20 +237,46 @@ inline std::vector<int> group_tiles(const WallTiles& tiles, const BoundaryLookup
   return root;
 }
 
-/// One fit on all the walls of `members` (tiles), from `start`; the whole map's transform `T`
-/// where that lays fewer of them. On a cluttered map a piece's fit can slide (a corridor's length)
-/// or turn away from the whole map's transform to a worse place (Intel: 11°, a fifth of its walls
-/// on the reference's where the whole map's transform lays a quarter).
+/// A group of tiles' rigid fit: trimmed ICP of all their walls from `start` and from each member's
+/// own fit (`tile_fit` where `fitted`; fits within `piece_rotation_tolerance_rad` / 10 and
+/// `piece_shift_tolerance_m` / 10 of one tried are not tried again), the one laying most walls
+/// within tolerance; the whole map's `T` where that lays more (on a cluttered map a fit can slide
+/// or turn away to a worse place: Intel's one piece turned 11° to lay a fifth of its walls, where
+/// the whole map's transform lays a quarter). One start can be a tile whose fit slid a wall period
+/// along a row of like rooms, or turned a degree or two off in a cluttered room: the group's walls
+/// then converge next to it, not to where the piece lies.
 inline Similarity2 fit_tile_group(const WallTiles& tiles, const std::vector<std::size_t>& members, const Similarity2& start,
+                                  const std::vector<Similarity2>& tile_fit, const std::vector<char>& fitted,
                                   const BoundaryLookup& reference, const Similarity2& T, const AssessParams& params) {
   std::vector<Eigen::Vector2d> points, piece_sides;
+  Eigen::Vector2d middle = Eigen::Vector2d::Zero();
   for (const std::size_t t : members) {
     points.insert(points.end(), tiles.walls[t].begin(), tiles.walls[t].end());
     piece_sides.insert(piece_sides.end(), tiles.sides[t].begin(), tiles.sides[t].end());
+    middle += tiles.centre(t);
   }
-  const Similarity2 own = refine_icp(points, reference, start, params.piece_icp, &piece_sides);
-  const double own_agreement = boundary_inlier_fraction(points, reference, own, params.wall_tolerance_m);
-  return own_agreement < boundary_inlier_fraction(points, reference, T, params.wall_tolerance_m) ? T : own;
+  if (!members.empty()) middle /= static_cast<double>(members.size());
+  std::vector<Similarity2> tried;
+  auto was_tried = [&](const Similarity2& s) {
+    return std::any_of(tried.begin(), tried.end(), [&](const Similarity2& u) {
+      return std::abs(wrap_angle(s.rotation - u.rotation)) <= 0.1 * params.piece_rotation_tolerance_rad &&
+             (s * middle - u * middle).norm() <= 0.1 * params.piece_shift_tolerance_m;
+    });
+  };
+  Similarity2 best = T;
+  std::size_t best_on = reference.count_within(points, T, params.wall_tolerance_m);
+  auto try_from = [&](const Similarity2& from) {
+    if (was_tried(from)) return;
+    tried.push_back(from);
+    const Similarity2 own = refine_icp(points, reference, from, params.piece_icp, &piece_sides);
+    const std::size_t on = reference.count_within(points, own, params.wall_tolerance_m);
+    if (on >= best_on && (on > best_on || tried.size() == 1)) best = own, best_on = on;
+  };
+  try_from(start);
+  for (const std::size_t t : members) {
+    if (fitted[t]) try_from(tile_fit[t]);
+  }
+  return best;
 }
 
 }  // namespace detail
