@@ -294,6 +294,7 @@ TEST_CASE("bad assessment parameters are refused by name") {
   refused([](AssessParams& p) { p.piece_retry_turns_rad = {0.1, std::nan("")}; }, "piece_retry_turns_rad");
   refused([](AssessParams& p) { p.piece_start_max_offset_m = -1.0; }, "piece_start_max_offset_m");
   refused([](AssessParams& p) { p.piece_refit_rounds = -1; }, "piece_refit_rounds");
+  refused([](AssessParams& p) { p.piece_fit_starts = 0; }, "piece_fit_starts");
   refused([](AssessParams& p) { p.warp.piece_label_cell_m = 0.0; }, "piece_label_cell_m");
   refused([](AssessParams& p) { p.warp.piece_boundary_m = -0.5; }, "piece_boundary_m");
 }

@@ -49,6 +49,9 @@ struct AssessParams {
     p.same_side_only = true;  // a room's face of a wall, never the next room's
     return p;
   }();
+  /// A piece is fitted by ICP from its first tile's fit and from the tiles' own fits that lay most
+  /// of its walls as they are: this many starts in all (at least 1).
+  std::size_t piece_fit_starts = 3;
   /// After the warp, each piece's transform is the rigid fit of its walls' warped places, and
   /// the walls are dealt again this many times to the piece whose fit lays them nearest
   /// (`fit_pieces_to_warp`): 0 keeps the labels the pieces were found with.
@@ -117,6 +120,7 @@ struct AssessParams {
     piece_icp.validate();
     detail::require_positive(piece_tile_m, "AssessParams::piece_tile_m");
     detail::require_non_negative(piece_refit_rounds, "AssessParams::piece_refit_rounds");
+    if (piece_fit_starts < 1) throw parameter_error("AssessParams::piece_fit_starts must be at least 1");
     if (piece_min_wall_points < 3) throw parameter_error("AssessParams::piece_min_wall_points must be >= 3");
     detail::require_positive(piece_max_rotation_rad, "AssessParams::piece_max_rotation_rad");
     detail::require_positive(piece_max_shift_m, "AssessParams::piece_max_shift_m");

@@ -237,9 +237,10 @@ inline std::vector<int> group_tiles(const WallTiles& tiles, const BoundaryLookup
   return root;
 }
 
-/// A group of tiles' rigid fit: trimmed ICP of all their walls from `start` and from each member's
-/// own fit (`tile_fit` where `fitted`; fits within `piece_rotation_tolerance_rad` / 10 and
-/// `piece_shift_tolerance_m` / 10 of one tried are not tried again), the one laying most walls
+/// A group of tiles' rigid fit: trimmed ICP of all their walls from `start` and from the members'
+/// own fits that lay most of them unrefined (`tile_fit` where `fitted`; fits within
+/// `piece_rotation_tolerance_rad` / 10 and `piece_shift_tolerance_m` / 10 of another count once;
+/// `piece_fit_starts` starts in all), the one laying most walls
 /// within tolerance; the whole map's `T` where that lays more (on a cluttered map a fit can slide
 /// or turn away to a worse place: Intel's one piece turned 11° to lay a fifth of its walls, where
 /// the whole map's transform lays a quarter). One start can be a tile whose fit slid a wall period
@@ -256,25 +257,36 @@ inline Similarity2 fit_tile_group(const WallTiles& tiles, const std::vector<std:
     middle += tiles.centre(t);
   }
   if (!members.empty()) middle /= static_cast<double>(members.size());
-  std::vector<Similarity2> tried;
+  // The distinct starts, each scored unrefined on every fourth wall point; ICP from the first
+  // start and from the best-scoring others, `piece_fit_starts` in all (one per tile would cost a
+  // refit per tile: a large floor in one piece has hundreds).
+  std::vector<Similarity2> starts{start};
   auto was_tried = [&](const Similarity2& s) {
-    return std::any_of(tried.begin(), tried.end(), [&](const Similarity2& u) {
+    return std::any_of(starts.begin(), starts.end(), [&](const Similarity2& u) {
       return std::abs(wrap_angle(s.rotation - u.rotation)) <= 0.1 * params.piece_rotation_tolerance_rad &&
              (s * middle - u * middle).norm() <= 0.1 * params.piece_shift_tolerance_m;
     });
   };
+  for (const std::size_t t : members) {
+    if (fitted[t] && !was_tried(tile_fit[t])) starts.push_back(tile_fit[t]);
+  }
+  if (starts.size() > params.piece_fit_starts) {
+    const std::vector<Eigen::Vector2d> few = detail::every_kth(points, 4);
+    std::vector<std::size_t> score(starts.size());
+    for (std::size_t k = 1; k < starts.size(); ++k) score[k] = reference.count_within(few, starts[k], params.wall_tolerance_m);
+    std::vector<std::size_t> order(starts.size() - 1);
+    std::iota(order.begin(), order.end(), std::size_t{1});
+    std::stable_sort(order.begin(), order.end(), [&](std::size_t a, std::size_t b) { return score[a] > score[b]; });
+    std::vector<Similarity2> kept{start};
+    for (std::size_t i = 0; i + 1 < params.piece_fit_starts; ++i) kept.push_back(starts[order[i]]);
+    starts = std::move(kept);
+  }
   Similarity2 best = T;
   std::size_t best_on = reference.count_within(points, T, params.wall_tolerance_m);
-  auto try_from = [&](const Similarity2& from) {
-    if (was_tried(from)) return;
-    tried.push_back(from);
-    const Similarity2 own = refine_icp(points, reference, from, params.piece_icp, &piece_sides);
+  for (std::size_t k = 0; k < starts.size(); ++k) {
+    const Similarity2 own = refine_icp(points, reference, starts[k], params.piece_icp, &piece_sides);
     const std::size_t on = reference.count_within(points, own, params.wall_tolerance_m);
-    if (on >= best_on && (on > best_on || tried.size() == 1)) best = own, best_on = on;
-  };
-  try_from(start);
-  for (const std::size_t t : members) {
-    if (fitted[t]) try_from(tile_fit[t]);
+    if (on > best_on || (k == 0 && on == best_on)) best = own, best_on = on;
   }
   return best;
 }
