@@ -20,7 +20,8 @@
 /// gather that way); groups still that small and tiles too bare to fit join the neighbouring piece
 /// that lays their walls best. Each piece is then fitted on all its walls,
 /// neighbouring pieces whose own fits agree after all are joined, and each area goes to the piece
-/// holding most of its walls.
+/// holding most of its walls. Once the map is warped (assess/report.hpp), `fit_pieces_to_warp`
+/// makes each piece's fit the rigid fit of its warped walls and joins the pieces that then agree.
 
 #include "../area_graph.hpp"
 #include "../grid.hpp"
@@ -49,7 +50,8 @@ struct RigidPiece {
   std::vector<int> areas;   ///< the map's area ids, ascending
   double size_m2 = 0.0;     ///< free space of those areas (the map's metres)
   Eigen::Vector2d centroid = Eigen::Vector2d::Zero();  ///< of that free space, map world
-  /// The piece's own rigid fit (map world → reference world).
+  /// The piece's own rigid fit (map world → reference world): the ICP fit of its walls from
+  /// `find_pieces`, made the least-squares fit of where the warp takes them by `fit_pieces_to_warp`.
   Similarity2 T_reference_map;
   /// Relative to the main piece: its turn (radians) and how far it moves the piece's centroid
   /// beyond where the main piece's transform puts it (reference metres). Zero for the main piece.
