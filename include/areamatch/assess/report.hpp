@@ -122,7 +122,7 @@ inline MapAssessment assess_match(const OccupancyGrid& map, const AreaGraph& map
     };
   }
   start_from_tiles.pieces = pieces.labels();
-  out.warp = fit_warp(map, reference, T, params.warp, start_from_tiles);
+  out.warp = fit_warp(map, reference_lookup, T, params.warp, start_from_tiles);
   const auto warped = detail::Clock::now();
   out.timings.warp_s = detail::seconds_between(pieces_found, warped);
 

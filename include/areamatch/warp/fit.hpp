@@ -293,22 +293,15 @@ inline PieceLabels relabel_pieces(const PieceLabels& labels, const std::vector<W
 
 }  // namespace detail
 
-/// The warp from `source` to `dest` that starts from `T_dest_source` (a match's answer) and bends
-/// the source's walls onto the destination's (file comment). Throws `parameter_error` for bad
-/// parameters or an empty map; a source without walls near the destination's gives the rigid
-/// transform alone (`WarpResult::paired_points` 0).
-///
-/// `start` may say where the displacements start and where the source is broken (see WarpStart):
-/// a broken map's pieces are each warped on their own walls, and a point moves with its piece's
-/// warp (`WarpField::set_pieces`), so that no control cell astride a cut blurs it.
-inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& dest, const Similarity2& T_dest_source,
+/// `fit_warp` (below) onto the destination's walls as `detail::wall_lookup(dest, params)` made
+/// them, for a caller that has that lookup already (`assess_match` finds the pieces on it).
+inline WarpResult fit_warp(const OccupancyGrid& source, const BoundaryLookup& lookup, const Similarity2& T_dest_source,
                            const WarpParams& params = {}, const WarpStart& start = {}) {
   params.validate();
-  if (source.empty() || dest.empty()) throw parameter_error("fit_warp: both maps must have cells");
+  if (source.empty()) throw parameter_error("fit_warp: the source map must have cells");
   const GridInfo g = GridInfo::of(source);
   const std::vector<Eigen::Vector2d> points = detail::boundary_points(g, detail::wall_edge_cells(source), params.point_spacing_m);
   const std::vector<Eigen::Vector2d> sides = detail::free_sides(source, points, params.free_side_radius_m);
-  const BoundaryLookup lookup = detail::wall_lookup(dest, params);
 
   WarpResult out;
   out.source_wall_points = points.size();
@@ -353,6 +346,21 @@ inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& des
   }
   if (!points.empty() && !lookup.empty()) detail::report_wall_fit(points, sides, lookup, T_dest_source, params, out);
   return out;
+}
+
+/// The warp from `source` to `dest` that starts from `T_dest_source` (a match's answer) and bends
+/// the source's walls onto the destination's (file comment). Throws `parameter_error` for bad
+/// parameters or an empty map; a source without walls near the destination's gives the rigid
+/// transform alone (`WarpResult::paired_points` 0).
+///
+/// `start` may say where the displacements start and where the source is broken (see WarpStart):
+/// a broken map's pieces are each warped on their own walls, and a point moves with its piece's
+/// warp (`WarpField::set_pieces`), so that no control cell astride a cut blurs it.
+inline WarpResult fit_warp(const OccupancyGrid& source, const OccupancyGrid& dest, const Similarity2& T_dest_source,
+                           const WarpParams& params = {}, const WarpStart& start = {}) {
+  params.validate();
+  if (source.empty() || dest.empty()) throw parameter_error("fit_warp: both maps must have cells");
+  return fit_warp(source, detail::wall_lookup(dest, params), T_dest_source, params, start);
 }
 
 }  // namespace areamatch
