@@ -191,14 +191,69 @@ TEST_CASE("a piece is fitted from each of its tiles' own fits, not its first til
 }
 
 TEST_CASE("pieces whose warped fits agree where they meet are one piece") {
-  // In-sample regression pin: pair 13 of `areamatch_assess_generated 60 4300`, broken once under a
-  // 0.8 m bend. The bend split one side of the break into two pieces whose tile fits disagreed; fitted
-  // on their warped walls they agree at their border, and are joined since 2026-12-07
-  // (detail::join_agreeing_pieces): 2 pieces, not 3.
-  const auto [c, a] = assess_distorted(4300, 13);
-  REQUIRE(c.robot.breaks.size() == 1);
-  REQUIRE(a.ok);
-  CHECK(a.brokenness.pieces.size() == 2);
+  // Before the warp a bend can split one side of a break into two pieces whose tile fits disagree
+  // a little; fitted on their warped walls they agree, and detail::join_agreeing_pieces joins them
+  // (on generated pair 13 of `areamatch_assess_generated 60 4300`: 3 pieces before 2026-12-07, 2
+  // since, in the Release build). Here three tiles in a row, three pieces: the first two moved
+  // alike (0.3 degrees apart), the third turned 4 degrees.
+  Brokenness b;
+  b.tile_m = 6.0;
+  b.tile_columns = 3;
+  b.tile_rows = 1;
+  b.piece_of_tile = {0, 1, 2};
+  b.tile_fit.assign(3, Similarity2{});
+  b.piece_of_area = {0, 1, 2, 2};
+  const double degree = pi / 180.0;
+  const Similarity2 turned_by[3] = {Similarity2{0.0, {1.0, 2.0}}, Similarity2{0.3 * degree, {1.0, 2.0}},
+                                    Similarity2{4.0 * degree, {1.0, 2.0}}};
+  std::vector<std::vector<Eigen::Vector2d>> from(3), to(3);
+  for (int k = 0; k < 3; ++k) {
+    RigidPiece piece;
+    piece.areas = k < 2 ? std::vector<int>{k} : std::vector<int>{2, 3};
+    piece.size_m2 = k < 2 ? 30.0 : 40.0;
+    piece.centroid = Eigen::Vector2d(6.0 * k + 3.0, 3.0);
+    piece.T_reference_map = turned_by[k];
+    b.pieces.push_back(piece);
+    for (int i = 0; i <= 60; ++i) {  // a wall along the tile's bottom and one along its top
+      for (const double y : {0.5, 5.5}) {
+        const Eigen::Vector2d p(6.0 * k + 0.1 * i, y);
+        from[static_cast<std::size_t>(k)].push_back(p);
+        to[static_cast<std::size_t>(k)].push_back(turned_by[k] * p);
+      }
+    }
+  }
+  // The pieces largest first: the 40 m² one, then the two of 30 m².
+  std::swap(b.pieces[0], b.pieces[2]);
+  std::swap(from[0], from[2]);
+  std::swap(to[0], to[2]);
+  b.piece_of_tile = {2, 1, 0};
+  b.piece_of_area = {2, 1, 0, 0};
+  AssessParams params;
+  detail::join_agreeing_pieces(b, from, to, params);
+  REQUIRE(b.pieces.size() == 2);
+  // The joined piece (60 m²) is now the main one; its fit lies between its two parts'.
+  CHECK(b.pieces[0].size_m2 == doctest::Approx(60.0));
+  CHECK(b.pieces[0].areas == std::vector<int>{0, 1});
+  CHECK(b.pieces[0].T_reference_map.rotation > 0.0);
+  CHECK(b.pieces[0].T_reference_map.rotation < 0.3 * degree);
+  CHECK(b.pieces[1].areas == std::vector<int>{2, 3});
+  CHECK(b.pieces[1].T_reference_map.rotation == doctest::Approx(4.0 * degree));
+  CHECK(b.piece_of_tile == std::vector<int>{0, 0, 1});
+  CHECK(b.piece_of_area == std::vector<int>{0, 0, 1, 1});
+  REQUIRE(from.size() == 2);
+  CHECK(from[0].size() == 2 * 122);
+  // Fits 2 degrees apart (beyond piece_rotation_tolerance_rad) stay apart.
+  Brokenness apart;
+  apart.tile_m = 6.0;
+  apart.tile_columns = 2;
+  apart.tile_rows = 1;
+  apart.piece_of_tile = {0, 1};
+  apart.piece_of_area = {0, 1};
+  apart.pieces.resize(2);
+  apart.pieces[1].T_reference_map.rotation = 2.0 * degree;
+  std::vector<std::vector<Eigen::Vector2d>> no_walls(2), no_places(2);
+  detail::join_agreeing_pieces(apart, no_walls, no_places, params);
+  CHECK(apart.pieces.size() == 2);
 }
 
 TEST_CASE("tiles whose fits scatter gather into their piece instead of joining the large one next door") {
