@@ -414,13 +414,15 @@ inline void fit_pieces_to_warp(Brokenness& b, const std::vector<Eigen::Vector2d>
       if (from[k].size() >= 3) T = detail::least_squares_rigid(from[k], to[k], T);
     }
     if (round == params.piece_refit_rounds || n_pieces == 1) break;
+    bool dealt_again = false;  // none moved: the fits are those of these labels already
     for (std::size_t i = 0; i < n; ++i) {
       double nearest = (b.pieces[label[i]].T_reference_map * map_walls[i] - warped[i]).squaredNorm();
       for (std::size_t k = 0; k < n_pieces; ++k) {
         const double d = (b.pieces[k].T_reference_map * map_walls[i] - warped[i]).squaredNorm();
-        if (d < nearest) nearest = d, label[i] = k;
+        if (d < nearest) nearest = d, label[i] = k, dealt_again = true;
       }
     }
+    if (!dealt_again) break;
   }
   if (n_pieces > 1) detail::join_agreeing_pieces(b, from, to, params);
   const Similarity2 main = b.pieces.front().T_reference_map;
