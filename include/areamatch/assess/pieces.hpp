@@ -247,26 +247,27 @@ inline void join_agreeing_pieces(Brokenness& b, std::vector<std::vector<Eigen::V
     }
   }
   if (!joined) return;
-  // The joined pieces, in the order of their first member; then the largest first.
+  // The joined pieces, in the order of their first member (a set's root is its smallest member,
+  // so it comes first); then the largest first.
   std::vector<std::size_t> group_of(n), firsts;
   for (std::size_t k = 0; k < n; ++k) {
     const std::size_t root = sets.find(k);
     if (root == k) firsts.push_back(k);
+    group_of[k] = root == k ? firsts.size() - 1 : group_of[root];
   }
   std::vector<RigidPiece> grouped(firsts.size());
   std::vector<std::vector<Eigen::Vector2d>> group_from(firsts.size()), group_to(firsts.size());
+  for (std::size_t k = 0; k < n; ++k) {
+    const std::size_t g = group_of[k];
+    const RigidPiece& piece = b.pieces[k];
+    RigidPiece& into = grouped[g];
+    into.areas.insert(into.areas.end(), piece.areas.begin(), piece.areas.end());
+    into.centroid += piece.size_m2 * piece.centroid;
+    into.size_m2 += piece.size_m2;
+    group_from[g].insert(group_from[g].end(), from[k].begin(), from[k].end());
+    group_to[g].insert(group_to[g].end(), to[k].begin(), to[k].end());
+  }
   for (std::size_t g = 0; g < firsts.size(); ++g) {
-    for (std::size_t k = 0; k < n; ++k) {
-      if (sets.find(k) != firsts[g]) continue;
-      group_of[k] = g;
-      const RigidPiece& piece = b.pieces[k];
-      RigidPiece& into = grouped[g];
-      into.areas.insert(into.areas.end(), piece.areas.begin(), piece.areas.end());
-      into.centroid += piece.size_m2 * piece.centroid;
-      into.size_m2 += piece.size_m2;
-      group_from[g].insert(group_from[g].end(), from[k].begin(), from[k].end());
-      group_to[g].insert(group_to[g].end(), to[k].begin(), to[k].end());
-    }
     RigidPiece& piece = grouped[g];
     std::sort(piece.areas.begin(), piece.areas.end());
     if (piece.size_m2 > 0.0) piece.centroid /= piece.size_m2;
@@ -428,7 +429,7 @@ inline void fit_pieces_to_warp(Brokenness& b, const std::vector<Eigen::Vector2d>
   const Similarity2 main = b.pieces.front().T_reference_map;
   for (std::size_t k = 0; k < b.pieces.size(); ++k) {
     RigidPiece& piece = b.pieces[k];
-    if (k < from.size() && !from[k].empty()) {
+    if (!from[k].empty()) {
       piece.wall_agreement = static_cast<double>(reference.count_within(from[k], piece.T_reference_map, params.wall_tolerance_m)) /
                              static_cast<double>(from[k].size());
     }
